@@ -1,0 +1,13 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// Straight-sided order elevation: every cell and facet block is raised to `order`, new
+/// nodes are placed by the current element map (so a curved input keeps its shape) and
+/// shared between neighbours. Existing nodes keep their indices; new nodes get tags after
+/// the largest one. Lowering the order is an error (std::invalid_argument).
+Mesh elevate_order(const Mesh& mesh, int order);
+
+}  // namespace meshmorph

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <Eigen/Core>
+
+#include "meshmorph/fem/reference_element.h"
+
+namespace meshmorph {
+
+/// The nodal Lagrange basis of a reference element: N_a(ξ_b) = δ_ab at its nodes. Complete
+/// polynomials of degree p on simplices, tensor-product degree p on quads and hexes.
+/// Built by inverting the Vandermonde matrix of a monomial basis at the nodes.
+class LagrangeBasis {
+ public:
+  LagrangeBasis(ElementType type, int order);
+
+  ElementType type() const { return ref_->type; }
+  int order() const { return ref_->order; }
+  int dim() const { return ref_->dim; }
+  int n() const { return ref_->n_nodes(); }
+  const ReferenceElement& reference() const { return *ref_; }
+
+  /// N(a) = N_a(ξ); ξ has dim() entries.
+  Eigen::VectorXd values(const Eigen::VectorXd& xi) const;
+  /// G(a, k) = ∂N_a/∂ξ_k, an n × dim matrix.
+  Eigen::MatrixXd gradients(const Eigen::VectorXd& xi) const;
+
+ private:
+  const ReferenceElement* ref_;
+  Eigen::MatrixXi exponents_;  // dim × n monomial exponents
+  Eigen::MatrixXd coeffs_;     // n × n: N_a = Σ_m coeffs_(m, a) · monomial_m
+};
+
+/// The shared basis of (type, order).
+const LagrangeBasis& lagrange_basis(ElementType type, int order);
+
+}  // namespace meshmorph

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <Eigen/Core>
+
+#include "meshmorph/mesh/element_type.h"
+
+namespace meshmorph {
+
+/// A quadrature rule on a reference element (mesh reference domains: unit simplex,
+/// [−1, 1]^d), exact for polynomials of total degree `degree` on simplices and of degree
+/// `degree` in each variable on tensor cells. Weights are positive and sum to the
+/// reference measure (1/d! for simplices, 2^d for tensor cells).
+struct QuadratureRule {
+  ElementType type;
+  int degree = 0;
+  Eigen::MatrixXd points;   ///< dim × n_points
+  Eigen::VectorXd weights;  ///< n_points
+
+  int n_points() const { return static_cast<int>(weights.size()); }
+};
+
+/// Shared rule of at least `degree` (Gauss–Legendre products on tensor cells, collapsed
+/// Gauss–Jacobi (Stroud conical) products on simplices; one point for degree ≤ 1).
+const QuadratureRule& quadrature_rule(ElementType type, int degree);
+
+/// Degree used by default for mesh-quality integrals on an element of `order`: 1 for
+/// linear simplices (A is constant: one point is exact), 2p for curved simplices and
+/// 2p + 1 for tensor cells, which integrates |A|² exactly and the rational metrics of
+/// DESIGN §2 to high accuracy on well-shaped elements.
+int metric_quadrature_degree(ElementType type, int order);
+
+}  // namespace meshmorph

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/mesh/element_type.h"
+
+namespace meshmorph {
+
+/// The reference element of a family and order, with its Lagrange nodes in the internal
+/// (Gmsh) ordering. Simplices live on the unit simplex (corners 0, e₁, e₂, e₃); tensor
+/// cells on [−1, 1]^d, as in Gmsh. Built once per (type, order) and shared.
+struct ReferenceElement {
+  ElementType type;
+  int order = 1;
+  int dim = 0;                 ///< topological dimension
+  Eigen::MatrixXd nodes;       ///< dim × n_nodes reference coordinates
+  /// Trace: for each local facet (mesh/topology.h corner_facets order), the cell-local
+  /// indices of its nodes, listed in the facet element's own ordering.
+  std::vector<std::vector<int>> facet_nodes;
+
+  int n_nodes() const { return static_cast<int>(nodes.cols()); }
+};
+
+/// The shared reference element of (type, order); throws std::invalid_argument outside
+/// orders 1–4 (simplices, lines) / 1–3 (tensor cells; order 4 is also available).
+const ReferenceElement& reference_element(ElementType type, int order);
+
+/// Weights of the corner (linear/multilinear) shape functions at reference point `xi`:
+/// barycentric coordinates on simplices, products of (1 ± ξ)/2 on tensor cells.
+Eigen::VectorXd corner_weights(ElementType type, const Eigen::VectorXd& xi);
+
+}  // namespace meshmorph

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "meshmorph/fem/shape_table.h"
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// The points at which validity is sampled for (type, order): the metric quadrature
+/// points, the Lagrange nodes and, for order ≥ 2, the nodes of the order-2p lattice (the
+/// determinant of A is a polynomial of degree d(p−1) on simplices, so this dense set
+/// catches sign changes between nodes). Shared table.
+const ShapeTable& validity_samples(ElementType type, int order);
+
+/// min over validity_samples of det A for one element (X: dim × n nodal coordinates).
+/// An element is valid when this is > 0 (DESIGN §2).
+double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X);
+
+/// Number of cells of `mesh` whose min_jacobian_det is ≤ 0 (or not finite).
+std::size_t count_invalid_cells(const Mesh& mesh);
+
+}  // namespace meshmorph

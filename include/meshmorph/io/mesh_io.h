@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+enum class MeshFormat { Msh41, Msh22, Vtu, Medit };
+
+/// How write_mesh writes. `format` defaults to the one implied by the extension
+/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit).
+struct WriteOptions {
+  std::optional<MeshFormat> format;
+  bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
+  /// Per-cell scalar arrays written as VTU cell data (one value per cell of Mesh::cells,
+  /// blocks concatenated); ignored by the other formats.
+  std::map<std::string, std::vector<double>> cell_data;
+};
+
+/// Reads a mesh; the format comes from the extension (.msh: MSH 2.2 or 4.1, ASCII or
+/// binary, detected from its header; .vtu; .mesh). Nodes are converted to the internal
+/// (Gmsh) ordering. Throws InputError naming the file and the line or byte offset for
+/// malformed content, and IoError when the file cannot be read.
+Mesh read_mesh(const std::filesystem::path& path);
+
+/// Writes a mesh atomically (io/atomic_file.h). Throws InputError when the format cannot
+/// hold the mesh (e.g. curved cells in Medit), IoError when the file cannot be written.
+void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options = {});
+
+}  // namespace meshmorph

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <filesystem>
+#include <ostream>
+
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// Reads a Gmsh MSH file, version 4.1 or 2.2, ASCII or binary (detected from $MeshFormat).
+///
+/// Sections read: $MeshFormat, $PhysicalNames, $Entities (4.1: physical tags live on the
+/// entities; an entity with several physical tags gives its cells the first one), $Nodes,
+/// $Elements; other `$X … $EndX` sections are skipped. Node tags may be sparse and
+/// unordered; they are kept in Mesh::node_tags. Element types: the complete Lagrange
+/// points, lines, triangles, quadrilaterals, tetrahedra and hexahedra of orders 1–4.
+/// Elements of the highest dimension (3 if any 3D element, else 2) become cells, the others
+/// facets; one CellBlock per (type, order) in order of first appearance. MSH 2.2: tag 1 is
+/// the physical group, tag 2 the elementary entity. Throws InputError ("file: line N: …",
+/// or "file: byte offset N: …" inside binary data) for malformed content, MSH 4.0, and
+/// unsupported element types; IoError when the file cannot be read.
+Mesh read_msh(const std::filesystem::path& path);
+
+/// Writes a mesh as MSH `version` 41 (4.1) or 22 (2.2), ASCII or binary (little-endian,
+/// size_t = 8). Facets are written before cells; consecutive cells with the same
+/// (entity, physical) tags form one element block, so reading the file back gives the same
+/// blocks, cells, tags and groups. Named groups go to $PhysicalNames; in 4.1 one entity per
+/// (dimension, entity tag, physical tag) carries the physical tag (entity tags are kept when
+/// they determine the physical tag, else renumbered). Node tags are written as stored
+/// (1..n when Mesh::node_tags is empty). Doubles are printed with the shortest exact
+/// representation, so ASCII files round-trip bit for bit. Throws InputError for a
+/// mesh MSH cannot hold (MSH 2.2 node tags above 2^31 − 1).
+void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary);
+
+}  // namespace meshmorph

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// Reads a VTK XML unstructured grid (.vtu): ascii, base64 "binary" and appended (raw or
+/// base64) arrays, zlib-compressed or not, UInt32 or UInt64 headers, any number of pieces.
+/// Cells: vertex 1, line 3, triangle 5, quad 9, tetra 10, hexahedron 12, the quadratic
+/// types 21, 22, 24, 28, 29 and the Lagrange types 68–72 (order from the point count,
+/// 1–4); nodes are permuted to the internal (Gmsh) ordering. Cells of the highest
+/// dimension become Mesh::cells, the others facets. A cell array named `group`,
+/// `material`, `attribute` or `gmsh:physical` gives the physical tags, `entity` or
+/// `gmsh:geometrical` the entity tags; integer FieldData arrays of two values (tag, dim)
+/// name the groups. Node tags are 1..n. Throws InputError ("file: line N: …") for
+/// malformed content.
+Mesh read_vtu(const std::filesystem::path& path);
+
+/// Writes a .vtu file (`version="2.2"`, little-endian, UInt64 headers): Points as Float64
+/// with 3 components, cells then facets as VTK Lagrange cells (types 68–72, vertex 1) in
+/// VTK's node ordering, cell data Int32 `group` (physical tag) and `entity`, each array of
+/// `cell_data` as Float64 (one value per cell of Mesh::cells; NaN on facets), and named
+/// groups as FieldData arrays {tag, dim}. `binary`: base64-encoded arrays, else ASCII with
+/// shortest exact doubles. Throws std::invalid_argument if a cell_data array has the wrong
+/// length.
+void write_vtu(std::ostream& out, const Mesh& mesh, bool binary,
+               const std::map<std::string, std::vector<double>>& cell_data = {});
+
+}  // namespace meshmorph

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/lagrange_basis.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include <Eigen/LU>
+
+namespace meshmorph {
+namespace {
+
+// Exponents of the monomials spanning the element's space: total degree ≤ p on simplices,
+// degree ≤ p in each variable on tensor cells (lines are both).
+Eigen::MatrixXi monomial_exponents(ElementType type, int p, int dim) {
+  std::vector<std::array<int, 3>> e;
+  const bool simplex = is_simplex(type);
+  const int pz = dim > 2 ? p : 0, py = dim > 1 ? p : 0, px = dim > 0 ? p : 0;
+  for (int k = 0; k <= pz; ++k)
+    for (int j = 0; j <= py; ++j)
+      for (int i = 0; i <= px; ++i)
+        if (!simplex || i + j + k <= p) e.push_back({i, j, k});
+  Eigen::MatrixXi out(dim, static_cast<Eigen::Index>(e.size()));
+  for (std::size_t m = 0; m < e.size(); ++m)
+    for (int k = 0; k < dim; ++k) out(k, static_cast<Eigen::Index>(m)) = e[m][static_cast<std::size_t>(k)];
+  return out;
+}
+
+double ipow(double x, int n) {
+  double r = 1.0;
+  for (int i = 0; i < n; ++i) r *= x;
+  return r;
+}
+
+}  // namespace
+
+LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_element(type, order)) {
+  const int n = ref_->n_nodes(), d = ref_->dim;
+  exponents_ = monomial_exponents(type, order, d);
+  Eigen::MatrixXd V(n, n);  // V(b, m) = monomial m at node b
+  for (int b = 0; b < n; ++b)
+    for (int m = 0; m < n; ++m) {
+      double v = 1.0;
+      for (int k = 0; k < d; ++k) v *= ipow(ref_->nodes(k, b), exponents_(k, m));
+      V(b, m) = v;
+    }
+  coeffs_ = V.fullPivLu().inverse();  // N_a = Σ_m coeffs_(m, a) monomial_m
+}
+
+Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
+  const int n = this->n(), d = dim();
+  Eigen::VectorXd mono(n);
+  for (int m = 0; m < n; ++m) {
+    double v = 1.0;
+    for (int k = 0; k < d; ++k) v *= ipow(xi(k), exponents_(k, m));
+    mono(m) = v;
+  }
+  return coeffs_.transpose() * mono;
+}
+
+Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
+  const int n = this->n(), d = dim();
+  Eigen::MatrixXd dmono(n, d);
+  for (int m = 0; m < n; ++m)
+    for (int g = 0; g < d; ++g) {
+      double v = 1.0;
+      for (int k = 0; k < d; ++k) {
+        const int e = exponents_(k, m);
+        if (k == g) {
+          v *= e == 0 ? 0.0 : e * ipow(xi(k), e - 1);
+        } else {
+          v *= ipow(xi(k), e);
+        }
+      }
+      dmono(m, g) = v;
+    }
+  return coeffs_.transpose() * dmono;
+}
+
+const LagrangeBasis& lagrange_basis(ElementType type, int order) {
+  static std::mutex mutex;
+  static std::map<std::pair<ElementType, int>, std::unique_ptr<LagrangeBasis>> cache;
+  std::lock_guard lock(mutex);
+  auto& slot = cache[{type, order}];
+  if (!slot) slot = std::make_unique<LagrangeBasis>(type, order);
+  return *slot;
+}
+
+}  // namespace meshmorph

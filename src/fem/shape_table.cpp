@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/shape_table.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
+
+#include "meshmorph/fem/jacobian.h"
+
+namespace meshmorph {
+
+ShapeTable tabulate(ElementType type, int order, const Eigen::MatrixXd& points) {
+  const auto& basis = lagrange_basis(type, order);
+  ShapeTable t;
+  t.type = type;
+  t.order = order;
+  t.dim = basis.dim();
+  t.points = points;
+  const auto np = static_cast<int>(points.cols());
+  t.N.resize(basis.n(), np);
+  t.dN.resize(basis.n(), t.dim * np);
+  for (int q = 0; q < np; ++q) {
+    t.N.col(q) = basis.values(points.col(q));
+    t.dN.middleCols(q * t.dim, t.dim) = basis.gradients(points.col(q));
+  }
+  return t;
+}
+
+const ShapeTable& shape_table(ElementType type, int order, int degree) {
+  static std::mutex mutex;
+  static std::map<std::tuple<ElementType, int, int>, std::unique_ptr<ShapeTable>> cache;
+  std::lock_guard lock(mutex);
+  auto& slot = cache[{type, order, degree}];
+  if (!slot) {
+    const auto& rule = quadrature_rule(type, degree);
+    slot = std::make_unique<ShapeTable>(tabulate(type, order, rule.points));
+    slot->weights = rule.weights;
+  }
+  return *slot;
+}
+
+Eigen::MatrixXd cell_coordinates(const Mesh& mesh, const CellBlock& block, std::size_t cell) {
+  const int n = block.n_nodes_per_cell();
+  Eigen::MatrixXd X(mesh.dim, n);
+  const auto* v = block.cell(cell);
+  for (int a = 0; a < n; ++a) X.col(a) = mesh.x.col(v[a]);
+  return X;
+}
+
+}  // namespace meshmorph

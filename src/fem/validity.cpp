@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/validity.h"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include <Eigen/LU>
+
+#include "meshmorph/fem/jacobian.h"
+
+namespace meshmorph {
+namespace {
+
+// Points of the regular lattice of order m on the reference element.
+Eigen::MatrixXd lattice(ElementType type, int m) {
+  const int dim = topological_dim(type);
+  const bool simplex = is_simplex(type);
+  std::vector<Eigen::Vector3d> pts;
+  for (int k = 0; k <= (dim > 2 ? m : 0); ++k)
+    for (int j = 0; j <= m; ++j)
+      for (int i = 0; i <= m; ++i) {
+        if (simplex && i + j + k > m) continue;
+        Eigen::Vector3d t(double(i) / m, double(j) / m, double(k) / m);
+        pts.push_back(simplex ? t : Eigen::Vector3d(2 * t - Eigen::Vector3d::Ones()));
+      }
+  Eigen::MatrixXd X(dim, static_cast<Eigen::Index>(pts.size()));
+  for (std::size_t p = 0; p < pts.size(); ++p) X.col(static_cast<Eigen::Index>(p)) = pts[p].head(dim);
+  return X;
+}
+
+}  // namespace
+
+const ShapeTable& validity_samples(ElementType type, int order) {
+  static std::mutex mutex;
+  static std::map<std::pair<ElementType, int>, std::unique_ptr<ShapeTable>> cache;
+  std::lock_guard lock(mutex);
+  auto& slot = cache[{type, order}];
+  if (!slot) {
+    const auto& rule = quadrature_rule(type, metric_quadrature_degree(type, order));
+    const auto& nodes = reference_element(type, order).nodes;
+    // det A is constant on linear simplices; elsewhere add the order-2p lattice.
+    const bool dense = order > 1 || !is_simplex(type);
+    const Eigen::MatrixXd extra = dense ? lattice(type, 2 * order) : Eigen::MatrixXd(nodes.rows(), 0);
+    Eigen::MatrixXd pts(nodes.rows(), rule.points.cols() + nodes.cols() + extra.cols());
+    pts << rule.points, nodes, extra;
+    slot = std::make_unique<ShapeTable>(tabulate(type, order, pts));
+  }
+  return *slot;
+}
+
+double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X) {
+  const auto& t = validity_samples(type, order);
+  double m = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < t.n_points(); ++q) {
+    const double det = jacobian(X, t, q).determinant();
+    if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
+    m = std::min(m, det);
+  }
+  return m;
+}
+
+std::size_t count_invalid_cells(const Mesh& mesh) {
+  std::size_t bad = 0;
+  for (const auto& b : mesh.cells) {
+    const auto n = static_cast<std::int64_t>(b.n_cells());
+#pragma omp parallel for reduction(+ : bad) schedule(static)
+    for (std::int64_t c = 0; c < n; ++c) {
+      const double det = min_jacobian_det(b.type, b.order, cell_coordinates(mesh, b, static_cast<std::size_t>(c)));
+      if (!(det > 0) || !std::isfinite(det)) ++bad;
+    }
+  }
+  return bad;
+}
+
+}  // namespace meshmorph

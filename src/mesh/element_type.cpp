@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/mesh/element_type.h"
+
+namespace meshmorph {
+
+std::string_view name_of(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return "point";
+    case ElementType::Line: return "line";
+    case ElementType::Triangle: return "triangle";
+    case ElementType::Quadrilateral: return "quadrilateral";
+    case ElementType::Tetrahedron: return "tetrahedron";
+    case ElementType::Hexahedron: return "hexahedron";
+  }
+  return "unknown";
+}
+
+}  // namespace meshmorph

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/mesh/mesh.h"
+
+#include <algorithm>
+#include <array>
+
+namespace meshmorph {
+
+void CellBlock::push_back(const std::int32_t* cell_nodes, std::int32_t physical_tag, std::int32_t entity_tag) {
+  nodes.insert(nodes.end(), cell_nodes, cell_nodes + n_nodes_per_cell());
+  physical.push_back(physical_tag);
+  entity.push_back(entity_tag);
+}
+
+std::size_t Mesh::n_cells() const {
+  std::size_t n = 0;
+  for (const auto& b : cells) n += b.n_cells();
+  return n;
+}
+
+int Mesh::order() const {
+  int p = 1;
+  for (const auto& b : cells) p = std::max(p, b.order);
+  return p;
+}
+
+std::optional<PhysicalGroup> Mesh::find_group(const std::string& key) const {
+  const bool numeric = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
+  // A number may name groups of several dimensions: prefer facets, then cells, then lower.
+  const std::array<int, 4> preference{dim - 1, dim, dim - 2, dim - 3};
+  for (int d : preference) {
+    for (const auto& g : groups) {
+      if (g.dim != d) continue;
+      if (numeric ? std::to_string(g.tag) == key : g.name == key) return g;
+    }
+  }
+  if (numeric) {  // a tag used by elements but without a $PhysicalNames entry
+    const auto tag = std::stoi(key);
+    for (int d : preference) {
+      const auto& blocks = d == dim ? cells : facets;
+      for (const auto& b : blocks) {
+        if (topological_dim(b.type) != d) continue;
+        if (std::find(b.physical.begin(), b.physical.end(), tag) != b.physical.end()) return PhysicalGroup{d, tag, {}};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<std::int32_t> Mesh::group_nodes(const PhysicalGroup& group) const {
+  std::vector<std::int32_t> out;
+  const auto& blocks = group.dim == dim ? cells : facets;
+  for (const auto& b : blocks) {
+    if (topological_dim(b.type) != group.dim) continue;
+    const int n = b.n_nodes_per_cell();
+    for (std::size_t c = 0; c < b.n_cells(); ++c) {
+      if (b.physical[c] != group.tag) continue;
+      out.insert(out.end(), b.cell(c), b.cell(c) + n);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::int32_t> Mesh::node_index_of_tag() const {
+  std::int64_t max_tag = 0;
+  for (auto t : node_tags) max_tag = std::max(max_tag, t);
+  std::vector<std::int32_t> index(static_cast<std::size_t>(max_tag + 1), -1);
+  for (std::size_t i = 0; i < node_tags.size(); ++i)
+    if (node_tags[i] > 0) index[static_cast<std::size_t>(node_tags[i])] = static_cast<std::int32_t>(i);
+  return index;
+}
+
+}  // namespace meshmorph

@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/mesh/topology.h"
+
+#include <algorithm>
+
+#include "meshmorph/error.h"
+
+namespace meshmorph {
+namespace {
+
+const std::vector<std::vector<int>> k_point_facets{};
+const std::vector<std::vector<int>> k_line_facets{{0}, {1}};
+const std::vector<std::vector<int>> k_tri_facets{{0, 1}, {1, 2}, {2, 0}};
+const std::vector<std::vector<int>> k_quad_facets{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+const std::vector<std::vector<int>> k_tet_facets{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+const std::vector<std::vector<int>> k_hex_facets{{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3},
+                                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}};
+
+const std::vector<std::array<int, 2>> k_no_edges{};
+const std::vector<std::array<int, 2>> k_line_edges{{0, 1}};
+const std::vector<std::array<int, 2>> k_tri_edges{{0, 1}, {1, 2}, {2, 0}};
+const std::vector<std::array<int, 2>> k_quad_edges{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+const std::vector<std::array<int, 2>> k_tet_edges{{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}};
+const std::vector<std::array<int, 2>> k_hex_edges{{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3},
+                                                  {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};
+
+// A facet identified by its sorted corner nodes (−1 pads 2- and 3-corner facets).
+struct FacetKey {
+  std::array<std::int32_t, 4> corners;
+  CellFacet where;
+};
+
+template <class Csr>
+void prefix_sum(Csr& offsets) {
+  for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
+}
+
+}  // namespace
+
+std::span<const std::vector<int>> corner_facets(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return k_point_facets;
+    case ElementType::Line: return k_line_facets;
+    case ElementType::Triangle: return k_tri_facets;
+    case ElementType::Quadrilateral: return k_quad_facets;
+    case ElementType::Tetrahedron: return k_tet_facets;
+    case ElementType::Hexahedron: return k_hex_facets;
+  }
+  return k_point_facets;
+}
+
+std::span<const std::array<int, 2>> corner_edges(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return k_no_edges;
+    case ElementType::Line: return k_line_edges;
+    case ElementType::Triangle: return k_tri_edges;
+    case ElementType::Quadrilateral: return k_quad_edges;
+    case ElementType::Tetrahedron: return k_tet_edges;
+    case ElementType::Hexahedron: return k_hex_edges;
+  }
+  return k_no_edges;
+}
+
+ElementType facet_type(ElementType t, int /*f*/) {
+  switch (t) {
+    case ElementType::Triangle:
+    case ElementType::Quadrilateral: return ElementType::Line;
+    case ElementType::Tetrahedron: return ElementType::Triangle;
+    case ElementType::Hexahedron: return ElementType::Quadrilateral;
+    default: return ElementType::Point;
+  }
+}
+
+std::pair<std::size_t, std::size_t> Topology::locate(std::int32_t cell) const {
+  const auto it = std::upper_bound(block_offset.begin(), block_offset.end(), static_cast<std::size_t>(cell));
+  const auto b = static_cast<std::size_t>(it - block_offset.begin()) - 1;
+  return {b, static_cast<std::size_t>(cell) - block_offset[b]};
+}
+
+Topology build_topology(const Mesh& mesh) {
+  Topology topo;
+  const auto n_nodes = mesh.n_nodes();
+  topo.block_offset.push_back(0);
+  for (const auto& b : mesh.cells) topo.block_offset.push_back(topo.block_offset.back() + b.n_cells());
+  const auto n_cells = topo.block_offset.back();
+
+  // Facets and edges by sorting corner keys: O(n log n) with no hash tables.
+  std::vector<FacetKey> keys;
+  std::vector<std::array<std::int32_t, 2>> edges;
+  topo.cell_neighbor_offset.assign(n_cells + 1, 0);
+  for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
+    const auto& b = mesh.cells[bi];
+    const auto facets = corner_facets(b.type);
+    for (std::size_t c = 0; c < b.n_cells(); ++c) {
+      const auto* v = b.cell(c);
+      const auto gc = static_cast<std::int32_t>(topo.block_offset[bi] + c);
+      topo.cell_neighbor_offset[static_cast<std::size_t>(gc) + 1] = static_cast<std::int64_t>(facets.size());
+      for (std::size_t f = 0; f < facets.size(); ++f) {
+        FacetKey k{{-1, -1, -1, -1}, {gc, static_cast<std::int32_t>(f)}};
+        for (std::size_t i = 0; i < facets[f].size(); ++i) k.corners[i] = v[facets[f][i]];
+        std::sort(k.corners.begin(), k.corners.begin() + static_cast<std::ptrdiff_t>(facets[f].size()));
+        keys.push_back(k);
+      }
+      for (const auto& e : corner_edges(b.type)) edges.push_back({std::min(v[e[0]], v[e[1]]), std::max(v[e[0]], v[e[1]])});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  topo.edges = std::move(edges);
+
+  std::sort(keys.begin(), keys.end(), [](const FacetKey& a, const FacetKey& b) {
+    return a.corners != b.corners ? a.corners < b.corners : a.where.cell < b.where.cell;
+  });
+  prefix_sum(topo.cell_neighbor_offset);
+  topo.cell_neighbors.assign(static_cast<std::size_t>(topo.cell_neighbor_offset.back()), -1);
+  std::vector<std::int32_t> corners;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].corners == keys[i].corners) ++j;
+    if (j - i > 2)
+      throw InputError("mesh: facet with corners " + std::to_string(keys[i].corners[0]) + "," +
+                       std::to_string(keys[i].corners[1]) + ",... is shared by " + std::to_string(j - i) +
+                       " cells (non-manifold mesh)");
+    const auto a = keys[i].where;
+    const auto b = j - i == 2 ? keys[i + 1].where : CellFacet{};
+    if (b.cell >= 0) {
+      topo.cell_neighbors[static_cast<std::size_t>(topo.cell_neighbor_offset[static_cast<std::size_t>(a.cell)] + a.local)] = b.cell;
+      topo.cell_neighbors[static_cast<std::size_t>(topo.cell_neighbor_offset[static_cast<std::size_t>(b.cell)] + b.local)] = a.cell;
+    } else {
+      topo.boundary_facets.push_back(static_cast<std::int32_t>(topo.facets.size()));
+      for (auto c : keys[i].corners)
+        if (c >= 0) corners.push_back(c);
+    }
+    topo.facets.push_back({a, b});
+    i = j;
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  topo.boundary_corners = std::move(corners);
+
+  // node → cells
+  topo.node_cell_offset.assign(n_nodes + 1, 0);
+  for (const auto& b : mesh.cells)
+    for (auto v : b.nodes) ++topo.node_cell_offset[static_cast<std::size_t>(v) + 1];
+  prefix_sum(topo.node_cell_offset);
+  topo.node_cells.resize(static_cast<std::size_t>(topo.node_cell_offset.back()));
+  {
+    std::vector<std::int64_t> fill(topo.node_cell_offset.begin(), topo.node_cell_offset.end() - 1);
+    for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
+      const auto& b = mesh.cells[bi];
+      const int n = b.n_nodes_per_cell();
+      for (std::size_t c = 0; c < b.n_cells(); ++c)
+        for (int a = 0; a < n; ++a) {
+          const auto v = static_cast<std::size_t>(b.cell(c)[a]);
+          topo.node_cells[static_cast<std::size_t>(fill[v]++)] = static_cast<std::int32_t>(topo.block_offset[bi] + c);
+        }
+    }
+  }
+
+  // node → nodes: union of the nodes of the cells around each node.
+  std::vector<std::vector<std::int32_t>> rows(n_nodes);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n_nodes); ++i) {
+    auto& row = rows[static_cast<std::size_t>(i)];
+    row.push_back(static_cast<std::int32_t>(i));
+    for (auto k = topo.node_cell_offset[static_cast<std::size_t>(i)]; k < topo.node_cell_offset[static_cast<std::size_t>(i) + 1]; ++k) {
+      const auto [bi, c] = topo.locate(topo.node_cells[static_cast<std::size_t>(k)]);
+      const auto& b = mesh.cells[bi];
+      row.insert(row.end(), b.cell(c), b.cell(c) + b.n_nodes_per_cell());
+    }
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+  }
+  topo.node_node_offset.assign(n_nodes + 1, 0);
+  for (std::size_t i = 0; i < n_nodes; ++i) topo.node_node_offset[i + 1] = topo.node_node_offset[i] + static_cast<std::int64_t>(rows[i].size());
+  topo.node_nodes.reserve(static_cast<std::size_t>(topo.node_node_offset.back()));
+  for (auto& row : rows) {
+    topo.node_nodes.insert(topo.node_nodes.end(), row.begin(), row.end());
+    std::vector<std::int32_t>().swap(row);
+  }
+  return topo;
+}
+
+}  // namespace meshmorph

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/elevate.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/mesh/topology.h"
+#include "support/element_cases.h"
+
+namespace meshmorph {
+namespace {
+
+using test::ElementCase;
+
+class ElevateSweep : public ::testing::TestWithParam<ElementCase> {};
+
+// Node count of an n-per-side structured mesh of order p: the (pn+1)^d lattice.
+TEST_P(ElevateSweep, SharesNodesBetweenNeighboursAndPlacesThemOnTheLattice) {
+  const auto [type, p] = GetParam();
+  const int n = 2;
+  const auto mesh = structured_mesh(type, p, n);
+  const int dim = topological_dim(type);
+  const int side = p * n + 1;
+  EXPECT_EQ(mesh.n_nodes(), static_cast<std::size_t>(dim == 2 ? side * side : side * side * side));
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+    for (int k = 0; k < dim; ++k) {
+      const double s = mesh.x(k, i) * p * n;
+      EXPECT_NEAR(s, std::round(s), 1e-12);
+    }
+  EXPECT_EQ(count_invalid_cells(mesh), 0u);
+  // Facets were elevated with the same nodes as the cells: every facet node is a boundary node.
+  const auto topo = build_topology(mesh);
+  const auto bnd = boundary_nodes(mesh, topo);
+  for (auto v : mesh.facets[0].nodes) EXPECT_TRUE(std::binary_search(bnd.begin(), bnd.end(), v));
+  EXPECT_EQ(mesh.facets[0].order, p);
+}
+
+TEST_P(ElevateSweep, ElevatingInStepsEqualsElevatingAtOnce) {
+  const auto [type, p] = GetParam();
+  if (p < 3) GTEST_SKIP() << "needs an intermediate order";
+  const auto once = elevate_order(structured_mesh(type, 1, 2), p);
+  const auto steps = elevate_order(elevate_order(structured_mesh(type, 1, 2), 2), p);
+  ASSERT_EQ(once.n_nodes(), steps.n_nodes());
+  const auto& a = once.cells[0];
+  const auto& b = steps.cells[0];
+  for (std::size_t c = 0; c < a.n_cells(); ++c)
+    for (int j = 0; j < a.n_nodes_per_cell(); ++j)
+      EXPECT_LT((once.x.col(a.cell(c)[j]) - steps.x.col(b.cell(c)[j])).norm(), 1e-14);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllCells, ElevateSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+
+TEST(Elevate, KeepsLinearNodesAndTagsAndRefusesToLower) {
+  const auto lin = structured_mesh(ElementType::Triangle, 1, 3);
+  const auto p2 = elevate_order(lin, 2);
+  EXPECT_EQ(p2.x.leftCols(lin.x.cols()), lin.x);
+  EXPECT_TRUE(std::equal(lin.node_tags.begin(), lin.node_tags.end(), p2.node_tags.begin()));
+  EXPECT_EQ(p2.node_tags.back(), static_cast<std::int64_t>(p2.n_nodes()));
+  EXPECT_THROW(elevate_order(p2, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace meshmorph

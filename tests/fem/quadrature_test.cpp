@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/quadrature.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace meshmorph {
+namespace {
+
+double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+
+// Exact ∫ ξ^a η^b ζ^c over the reference element (unit simplex or [−1, 1]^d).
+double exact_monomial(ElementType t, int a, int b, int c) {
+  switch (t) {
+    case ElementType::Line: return a % 2 ? 0.0 : 2.0 / (a + 1);
+    case ElementType::Triangle: return factorial(a) * factorial(b) / factorial(a + b + 2);
+    case ElementType::Tetrahedron: return factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + 3);
+    case ElementType::Quadrilateral: return exact_monomial(ElementType::Line, a, 0, 0) * exact_monomial(ElementType::Line, b, 0, 0);
+    case ElementType::Hexahedron:
+      return exact_monomial(ElementType::Line, a, 0, 0) * exact_monomial(ElementType::Line, b, 0, 0) *
+             exact_monomial(ElementType::Line, c, 0, 0);
+    default: return 1.0;
+  }
+}
+
+TEST(QuadratureRule, ExactForEveryMonomialUpToItsDegree) {
+  for (auto t : {ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron,
+                 ElementType::Hexahedron}) {
+    const int dim = topological_dim(t);
+    for (int degree = 0; degree <= 12; ++degree) {
+      const auto& rule = quadrature_rule(t, degree);
+      for (int a = 0; a <= degree; ++a)
+        for (int b = 0; b <= (dim > 1 ? degree : 0); ++b)
+          for (int c = 0; c <= (dim > 2 ? degree : 0); ++c) {
+            if (is_simplex(t) && a + b + c > degree) continue;
+            double sum = 0;
+            for (int q = 0; q < rule.n_points(); ++q) {
+              double v = std::pow(rule.points(0, q), a);
+              if (dim > 1) v *= std::pow(rule.points(1, q), b);
+              if (dim > 2) v *= std::pow(rule.points(2, q), c);
+              sum += rule.weights(q) * v;
+            }
+            EXPECT_NEAR(sum, exact_monomial(t, a, b, c), 1e-13)
+                << name_of(t) << " degree " << degree << " monomial " << a << "," << b << "," << c;
+          }
+    }
+  }
+}
+
+TEST(QuadratureRule, PointsInsideAndWeightsPositive) {
+  for (auto t : {ElementType::Triangle, ElementType::Tetrahedron, ElementType::Quadrilateral, ElementType::Hexahedron})
+    for (int degree = 1; degree <= 10; ++degree) {
+      const auto& rule = quadrature_rule(t, degree);
+      EXPECT_GT(rule.weights.minCoeff(), 0.0);
+      if (is_simplex(t)) {
+        EXPECT_GT(rule.points.minCoeff(), 0.0);
+        EXPECT_LT(rule.points.colwise().sum().maxCoeff(), 1.0);
+      } else {
+        EXPECT_LT(rule.points.cwiseAbs().maxCoeff(), 1.0);
+      }
+    }
+}
+
+TEST(QuadratureRule, LinearSimplexRuleIsTheCentroid) {
+  const auto& rule = quadrature_rule(ElementType::Tetrahedron, 1);
+  ASSERT_EQ(rule.n_points(), 1);
+  EXPECT_NEAR((rule.points.col(0) - Eigen::Vector3d::Constant(0.25)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(rule.weights(0), 1.0 / 6.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace meshmorph

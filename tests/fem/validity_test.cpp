@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/fem/validity.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/structured.h"
+#include "support/element_cases.h"
+
+namespace meshmorph {
+namespace {
+
+using test::ElementCase;
+
+class ValiditySweep : public ::testing::TestWithParam<ElementCase> {};
+
+TEST_P(ValiditySweep, StructuredMeshIsValidAndAffineJacobiansAreExact) {
+  const auto mesh = structured_mesh(GetParam().type, GetParam().order, 2);
+  EXPECT_EQ(count_invalid_cells(mesh), 0u);
+  // Map the mesh by x → Mx + b: every element Jacobian is M times the original one.
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(mesh.dim, mesh.dim);
+  M(0, 1) = 0.3;
+  M(mesh.dim - 1, 0) = -0.2;
+  auto moved = mesh;
+  moved.x = (M * mesh.x).colwise() + Eigen::VectorXd::Constant(mesh.dim, 0.7);
+  const auto& b = mesh.cells[0];
+  const auto& t = shape_table(b.type, b.order, metric_quadrature_degree(b.type, b.order));
+  for (std::size_t c = 0; c < b.n_cells(); ++c)
+    for (int q = 0; q < t.n_points(); ++q) {
+      const auto A0 = jacobian(cell_coordinates(mesh, b, c), t, q);
+      const auto A1 = jacobian(cell_coordinates(moved, b, c), t, q);
+      EXPECT_LT((A1 - M * A0).norm(), 1e-12 * A0.norm());
+    }
+}
+
+TEST_P(ValiditySweep, SwappingTwoCornersInverts) {
+  auto mesh = structured_mesh(GetParam().type, GetParam().order, 1);
+  auto& b = mesh.cells[0];
+  std::swap(b.cell(0)[0], b.cell(0)[1]);
+  EXPECT_GE(count_invalid_cells(mesh), 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllCells, ValiditySweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+
+// A P2 triangle whose edge node is pushed across the opposite corner folds inside, while
+// det A stays positive at the corners: the dense samples must catch it.
+TEST(Validity, CatchesAFoldBetweenTheCornersOfACurvedTriangle) {
+  Eigen::MatrixXd X(2, 6);
+  X << 0, 1, 0, 0.5, 0.5, 0.0,  //
+      0, 0, 1, 0.0, 0.5, 0.5;
+  EXPECT_GT(min_jacobian_det(ElementType::Triangle, 2, X), 0.0);
+  X.col(3) << 0.5, 0.9;  // edge 0–1 midpoint pulled far inside
+  EXPECT_LE(min_jacobian_det(ElementType::Triangle, 2, X), 0.0);
+}
+
+TEST(Validity, NanCoordinatesAreInvalid) {
+  auto mesh = structured_mesh(ElementType::Tetrahedron, 1, 1);
+  mesh.x(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_GE(count_invalid_cells(mesh), 1u);
+}
+
+}  // namespace
+}  // namespace meshmorph
