@@ -22,9 +22,10 @@ namespace meshmorph {
 /// malformed content.
 Mesh read_vtu(const std::filesystem::path& path);
 
-/// Writes a .vtu file (`version="2.2"`, little-endian, UInt64 headers): Points as Float64
-/// with 3 components, cells then facets as VTK Lagrange cells (types 68–72, vertex 1) in
-/// VTK's node ordering, cell data Int32 `group` (physical tag) and `entity`, each array of
+/// Writes a .vtu file (little-endian, UInt64 headers; `version="2.2"` when Lagrange
+/// hexahedra are present, as VTK does, else "1.0"): Points as Float64 with 3 components,
+/// cells then facets, linear ones as VTK's classic types (1, 3, 5, 9, 10, 12), higher
+/// orders as Lagrange cells (68–72) in VTK's node ordering, cell data Int32 `group` (physical tag) and `entity`, each array of
 /// `cell_data` as Float64 (one value per cell of Mesh::cells; NaN on facets), and named
 /// groups as FieldData arrays {tag, dim}. `binary`: base64-encoded arrays, else ASCII with
 /// shortest exact doubles. Throws std::invalid_argument if a cell_data array has the wrong

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// A point or vector of a case file: 2 entries in 2D, 3 in 3D. The parser accepts either;
+/// check_case_against_mesh() checks that the length matches the mesh.
+using CaseVector = Eigen::VectorXd;
+
+struct LevelSet;
+
+/// σ = |x − center| − radius (a circle in 2D).
+struct SphereLevelSet { CaseVector center; double radius = 0; };
+/// σ = distance from the (infinite) axis line through `center` − radius; 3D only.
+struct CylinderLevelSet { CaseVector center, axis; double radius = 0; };
+/// σ = (x − point)·n/|n|: negative on the side opposite the normal.
+struct PlaneLevelSet { CaseVector point, normal; };
+/// Axis-aligned box of edge lengths `size` centred at `center`.
+struct BoxLevelSet { CaseVector center, size; };
+/// Torus around `axis` through `center`, radii `major` (R) and `minor` (r); 3D only.
+struct TorusLevelSet { CaseVector center, axis; double major = 0, minor = 0; };
+/// A muparser expression in x, y, z (constant pi), compiled once by the parser to check it.
+struct ExprLevelSet { std::string expression; };
+/// min over the operands (≥ 1 operand).
+struct UnionLevelSet { std::vector<LevelSet> operands; };
+/// max over the operands (≥ 1 operand).
+struct IntersectionLevelSet { std::vector<LevelSet> operands; };
+/// operands[0] minus operands[1]: max(a, −b) (exactly 2 operands).
+struct DifferenceLevelSet { std::vector<LevelSet> operands; };
+/// A nodal field `field` of a background mesh `file` (paper 003 §3.1); path resolved.
+struct MeshLevelSet { std::filesystem::path file; std::string field; };
+
+/// A level set of DESIGN §3.2 (σ < 0 inside the solid) as a typed tree.
+struct LevelSet {
+  std::variant<SphereLevelSet, CylinderLevelSet, PlaneLevelSet, BoxLevelSet, TorusLevelSet,
+               ExprLevelSet, UnionLevelSet, IntersectionLevelSet, DifferenceLevelSet, MeshLevelSet>
+      shape;
+  std::string key_path;  ///< where it was given, e.g. "boundary[3].project"
+};
+
+/// Nodal displacements read from a CSV file `node,dx,dy[,dz]` (node = tag in the mesh file).
+struct DisplacementTable {
+  std::filesystem::path file;
+  std::vector<std::int64_t> node_tags;  ///< unique, in file order
+  Eigen::MatrixXd displacement;         ///< (2 or 3) × node_tags.size()
+  std::vector<int> line;                ///< line of each row in `file`, for later messages
+};
+
+struct FixedMotion {};
+struct TranslateMotion { CaseVector displacement; };
+/// Rotation by `degrees` (counter-clockwise about `axis`, right-hand rule) around `center`;
+/// `axis` is absent in 2D.
+struct RotateMotion { CaseVector center; std::optional<CaseVector> axis; double degrees = 0; };
+struct ScaleMotion { CaseVector center; double factor = 1; };
+/// Each node of the group moves to (morph, untangle) or along (fit) the zero level set.
+struct ProjectMotion { LevelSet target; };
+struct DisplaceMotion { DisplacementTable table; };
+/// Tangential motion on the group's initial plane.
+struct SlideMotion {};
+
+using Motion = std::variant<FixedMotion, TranslateMotion, RotateMotion, ScaleMotion, ProjectMotion,
+                            DisplaceMotion, SlideMotion>;
+
+/// One entry of "boundary": a physical group (name, or number as decimal digits) and its motion.
+struct BoundaryCondition {
+  std::string group;
+  Motion motion;
+  std::string key_path;  ///< "boundary[i]"
+};
+
+/// A parsed and validated case file (DESIGN §3.2). Paths are resolved against the folder of
+/// the case file; unset optional keys stay empty.
+struct CaseFile {
+  std::filesystem::path file;        ///< the case file as given (used in messages)
+  std::filesystem::path mesh;        ///< exists
+  std::optional<int> order;          ///< 1–4
+  std::vector<BoundaryCondition> boundary;
+  std::optional<LevelSet> interface;
+  std::optional<LevelSet> trim;
+  int steps = 1;                     ///< ≥ 1
+  bool output_each_step = false;
+  nlohmann::json options = nlohmann::json::object();  ///< validated by the method (OptionReader)
+  std::optional<std::filesystem::path> output;  ///< .msh, .vtu or .mesh
+  std::optional<std::filesystem::path> report;
+};
+
+/// Reads and validates a case file. Throws InputError whose message starts with the file
+/// name and names the line and column (JSON syntax), or the key path
+/// (`case.json: boundary[2].rotate.axis: expected 3 numbers`) for wrong types, unknown keys,
+/// out-of-range values, missing files, malformed CSV displacement files (file:line) and
+/// expressions that do not compile. Throws IoError when the file cannot be read.
+CaseFile read_case_file(const std::filesystem::path& path);
+
+/// The same, from JSON text; `file` names it in messages and is the base of relative paths.
+CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file);
+
+/// Checks a case against its loaded mesh: every boundary group exists (by name or number),
+/// every vector has mesh.dim entries, `rotate` has an axis exactly in 3D, cylinder and torus
+/// are used only in 3D, and every node of a displacement table exists in the mesh with mesh.dim
+/// components. Throws InputError naming the case file and the key path.
+void check_case_against_mesh(const CaseFile& c, const Mesh& mesh);
+
+/// Reads a displacement CSV: lines `node,dx,dy[,dz]` (the same number of columns on every
+/// line), an optional header line, blank lines ignored. Throws InputError `file:line: ...`
+/// for bad numbers, non-finite values, wrong column counts, node tags < 1 and repeated nodes.
+DisplacementTable read_displacement_csv(const std::filesystem::path& path);
+
+}  // namespace meshmorph

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <functional>
+#include <ostream>
+
+namespace CLI {
+class App;
+}
+
+namespace meshmorph {
+
+/// What a subcommand returns: whether it reached its goal (exit 0) or ran without reaching
+/// it (exit 1). Bad input is an exception (InputError, IoError, std::invalid_argument),
+/// which app/main.cpp maps to exit 2.
+enum class Outcome { GoalReached, GoalMissed };
+
+/// A parsed subcommand, ready to run; `out` receives its tables (main passes stdout).
+using Command = std::function<Outcome(std::ostream& out)>;
+
+/// Options shared by every subcommand.
+struct CommonOptions {
+  int threads = 0;  ///< OpenMP threads; 0 = the OpenMP default
+  bool quiet = false;
+  bool verbose = false;
+};
+
+/// Adds --threads, --quiet, --verbose and --version to the top-level app.
+void add_common_options(CLI::App& app, CommonOptions& options);
+/// Installs the stderr log sink ("meshmorph: ..."), silent with --quiet, detailed with
+/// --verbose, and sets the OpenMP thread count.
+void apply_common_options(const CommonOptions& options);
+
+/// `meshmorph quality MESH [--json FILE] [-o OUT.vtu]`; sets `run` when chosen.
+void add_quality_command(CLI::App& app, Command& run);
+/// `meshmorph convert IN OUT [--order P] [--binary] [--msh22]`; sets `run` when chosen.
+void add_convert_command(CLI::App& app, Command& run);
+
+}  // namespace meshmorph

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "meshmorph/energy/dof_map.h"
+#include "meshmorph/energy/element_energy.h"
+#include "meshmorph/energy/target.h"
+#include "meshmorph/mesh/topology.h"
+
+namespace meshmorph {
+
+/// What EnergyAssembler::assemble fills besides the value.
+struct AssemblyOptions {
+  Want want = Want::Hessian;                     ///< Value, + gradient, + Hessian
+  HessianMode hessian = HessianMode::Projected;  ///< PSD projection of d²μ/dT² per point
+  /// Per-cell weights ω_e (global cell order, blocks concatenated; paper 000 eq. 10–11);
+  /// empty means ω_e = 1. E = Σ_e ω_e E_e.
+  std::span<const double> weights;
+  int threads = 0;  ///< OpenMP threads; 0 = omp_get_max_threads()
+};
+
+/// Result of an assembly over the free DOFs of a DofMap.
+struct Assembly {
+  double value = 0.0;              ///< Σ ω_e E_e; +∞ when any element is +∞ (inverted)
+  Eigen::VectorXd gradient;        ///< n_free, reduced numbering (DofMap)
+  /// n_free × n_free, column-major, full symmetric storage (both triangles), the pattern of
+  /// EnergyAssembler (fixed across calls: only the values are rewritten).
+  Eigen::SparseMatrix<double> hessian;
+  std::vector<double> element_values;  ///< E_e per cell without ω_e (global cell order)
+};
+
+/// Assembles the energy Σ_e ω_e E_e of a metric over all cells of a mesh, with its gradient
+/// and sparse Hessian over the free DOFs of a DofMap.
+///
+/// Built once per mesh: the sparsity pattern of the reduced Hessian (d×d node blocks from
+/// Topology::node_nodes, fixed DOFs removed), a scatter map (cell, local a, local b) → offset
+/// in the CSC value array, and a greedy colouring of the cells of each block such that no two
+/// cells of one colour share a node. The element loop runs colour by colour in parallel and
+/// writes gradient and Hessian without atomics; every entry receives its contributions in the
+/// same order for any thread count, so results are bit-for-bit identical across thread counts.
+template <int d>
+class EnergyAssembler {
+ public:
+  /// `mesh`, `topology` (of mesh), `targets` (of mesh) and `dofs` must outlive the assembler.
+  EnergyAssembler(const Mesh& mesh, const Topology& topology, const TargetField<d>& targets,
+                  const DofMap& dofs);
+
+  /// Evaluates at nodal coordinates `x` (d × n_nodes; fixed DOFs are read from it too).
+  /// Reuses the storage of `out` (its Hessian keeps this assembler's pattern). Want::Value
+  /// sets `value` only; Gradient also `gradient` and `element_values`; Hessian also `hessian`.
+  /// When the value is +∞ the derivatives are unspecified.
+  void assemble(const Metric<d>& metric, const Eigen::MatrixXd& x, const AssemblyOptions& options,
+                Assembly& out) const;
+
+  /// The energy only (for line searches): Σ_e ω_e E_e, +∞ if any cell is inverted.
+  double value(const Metric<d>& metric, const Eigen::MatrixXd& x, std::span<const double> weights = {},
+               int threads = 0) const;
+
+  const DofMap& dofs() const { return *dofs_; }
+  std::size_t n_cells() const { return n_cells_; }
+  /// Number of stored Hessian entries (both triangles).
+  std::int64_t nnz() const { return static_cast<std::int64_t>(inner_.size()); }
+  /// Number of colours of block i (parallel sweeps per assembly).
+  int n_colors(std::size_t block) const { return static_cast<int>(blocks_[block].color_offset.size()) - 1; }
+
+ private:
+  struct BlockPlan {
+    std::vector<std::int32_t> color_offset;  // colour c: cells order[color_offset[c] .. [c+1])
+    std::vector<std::int32_t> order;         // cells sorted by colour, then index
+    std::vector<std::int32_t> scatter;       // n_cells × n × n: offset of node a in column block of b
+  };
+  const Mesh* mesh_;
+  const TargetField<d>* targets_;
+  const DofMap* dofs_;
+  std::size_t n_cells_ = 0;
+  std::vector<BlockPlan> blocks_;
+  std::vector<int> outer_, inner_;  // the reduced Hessian's CSC pattern (Assembly::hessian copies it)
+};
+
+}  // namespace meshmorph

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string_view>
+#include <vector>
+
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph {
+
+/// Mesh quality summary and per-cell values (DESIGN §3.3 names). "Not available" values
+/// (no input mesh, no cells) are NaN; a JSON writer emits them as null. Per-cell arrays
+/// follow the global cell order (blocks of Mesh::cells concatenated, as Topology does) and
+/// are meant as .vtu cell data under the names kQualityField, kShapeQualityField and
+/// kScaledJacobianField.
+struct QualityReport {
+  std::size_t n_cells = 0;
+  /// Cells with min_jacobian_det ≤ 0 over validity_samples, or non-finite coordinates.
+  std::size_t inverted_elements = 0;
+  bool has_input = false;  ///< whether `quality` is against an input mesh
+  /// q_e = 1/η_e against the input mesh (paper 000 eq. 9; 1 = undistorted, 0 = inverted).
+  double min_quality = 0.0;
+  double mean_quality = 0.0;
+  /// The same measure against the ideal element (regular simplex / square / cube).
+  double min_shape_quality = 0.0;
+  double mean_shape_quality = 0.0;
+  /// Verdict's scaled Jacobian (linear cells) or its sampled minimum (curved cells);
+  /// minimum over the cells whose value is a number (non-finite cells count as inverted).
+  double min_scaled_jacobian = 0.0;
+  /// Counts of q_e in 10 bins [k/10, (k+1)/10) on [0, 1], the last bin closed (quality_bin):
+  /// `quality_histogram` of `quality` (all zero without input), `shape_histogram` of
+  /// `shape_quality`.
+  std::array<std::size_t, 10> quality_histogram{};
+  std::array<std::size_t, 10> shape_histogram{};
+  std::vector<double> quality;          ///< per cell, against the input (empty without input)
+  std::vector<double> shape_quality;    ///< per cell, against the ideal element
+  std::vector<double> scaled_jacobian;  ///< per cell (NaN for non-finite coordinates)
+};
+
+inline constexpr std::string_view kQualityField = "quality";
+inline constexpr std::string_view kShapeQualityField = "shape_quality";
+inline constexpr std::string_view kScaledJacobianField = "scaled_jacobian";
+
+/// Measures every cell of `current`; against `input` too when it is given, which must have
+/// the same dimension, node count and cell blocks (types, orders, connectivity sizes) —
+/// otherwise std::invalid_argument. Parallel over cells (OpenMP); the result does not
+/// depend on the thread count.
+QualityReport quality_report(const Mesh& current, const Mesh* input = nullptr);
+
+/// The histogram bin of a quality value: min(9, ⌊10 q⌋), values below 0 (and NaN) in bin 0.
+std::size_t quality_bin(double q);
+
+}  // namespace meshmorph

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#include <string>
+#include <type_traits>
+
+#include "app/detail/json_reader.h"
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/error.h"
+
+namespace meshmorph {
+
+using detail::JsonWhere;
+
+namespace {
+
+class MeshChecker {
+ public:
+  MeshChecker(const CaseFile& c, const Mesh& mesh) : c_(c), mesh_(mesh) {}
+
+  void vector(const CaseVector& v, const JsonWhere& w) const {
+    if (v.size() != mesh_.dim)
+      w.fail("expected " + std::to_string(mesh_.dim) + " numbers for a " + std::to_string(mesh_.dim) +
+             "D mesh, found " + std::to_string(v.size()));
+  }
+
+  void only_3d(const JsonWhere& w, const char* what) const {
+    if (mesh_.dim != 3) w.fail(std::string(what) + " exists only in 3D; the mesh is 2D");
+  }
+
+  void level_set(const LevelSet& ls) const {
+    const JsonWhere base{c_.file.string(), ls.key_path};
+    std::visit(
+        [&](const auto& s) {
+          using S = std::decay_t<decltype(s)>;
+          if constexpr (std::is_same_v<S, SphereLevelSet>) {
+            vector(s.center, base.key("sphere").key("center"));
+          } else if constexpr (std::is_same_v<S, CylinderLevelSet>) {
+            only_3d(base.key("cylinder"), "an infinite cylinder");
+            vector(s.center, base.key("cylinder").key("center"));
+            vector(s.axis, base.key("cylinder").key("axis"));
+          } else if constexpr (std::is_same_v<S, PlaneLevelSet>) {
+            vector(s.point, base.key("plane").key("point"));
+            vector(s.normal, base.key("plane").key("normal"));
+          } else if constexpr (std::is_same_v<S, BoxLevelSet>) {
+            vector(s.center, base.key("box").key("center"));
+            vector(s.size, base.key("box").key("size"));
+          } else if constexpr (std::is_same_v<S, TorusLevelSet>) {
+            only_3d(base.key("torus"), "a torus");
+            vector(s.center, base.key("torus").key("center"));
+            vector(s.axis, base.key("torus").key("axis"));
+          } else if constexpr (std::is_same_v<S, UnionLevelSet> || std::is_same_v<S, IntersectionLevelSet> ||
+                               std::is_same_v<S, DifferenceLevelSet>) {
+            for (const auto& operand : s.operands) level_set(operand);
+          }
+        },
+        ls.shape);
+  }
+
+  void displacement(const DisplacementTable& t, const JsonWhere& w) const {
+    if (t.displacement.rows() != mesh_.dim)
+      w.fail(t.file.string() + ": expected " + std::to_string(mesh_.dim) + " displacement components per row for a " +
+             std::to_string(mesh_.dim) + "D mesh, found " + std::to_string(t.displacement.rows()));
+    const auto index = mesh_.node_index_of_tag();
+    for (std::size_t i = 0; i < t.node_tags.size(); ++i) {
+      const std::int64_t tag = t.node_tags[i];
+      if (tag >= static_cast<std::int64_t>(index.size()) || index[static_cast<std::size_t>(tag)] < 0)
+        throw InputError(t.file.string() + ":" + std::to_string(t.line[i]) + ": node " + std::to_string(tag) +
+                         " is not in " + c_.mesh.filename().string() + " (" + c_.file.string() + ": " + w.path + ")");
+    }
+  }
+
+  void boundary(const BoundaryCondition& bc) const {
+    const JsonWhere w{c_.file.string(), bc.key_path};
+    if (!mesh_.find_group(bc.group)) {
+      std::string known;
+      for (const auto& g : mesh_.groups) {
+        if (!known.empty()) known += ", ";
+        known += g.name.empty() ? std::to_string(g.tag) : g.name + " (" + std::to_string(g.tag) + ")";
+      }
+      w.key("group").fail("no physical group \"" + bc.group + "\" in " + c_.mesh.filename().string() +
+                          (known.empty() ? std::string(" (it has no groups)") : " (it has: " + known + ")"));
+    }
+    std::visit(
+        [&](const auto& m) {
+          using M = std::decay_t<decltype(m)>;
+          if constexpr (std::is_same_v<M, TranslateMotion>) {
+            vector(m.displacement, w.key("translate"));
+          } else if constexpr (std::is_same_v<M, RotateMotion>) {
+            vector(m.center, w.key("rotate").key("center"));
+            if (mesh_.dim == 3 && !m.axis) w.key("rotate").fail("missing key \"axis\" (needed in 3D)");
+            if (mesh_.dim == 2 && m.axis) w.key("rotate").key("axis").fail("a 2D rotation takes no axis");
+          } else if constexpr (std::is_same_v<M, ScaleMotion>) {
+            vector(m.center, w.key("scale").key("center"));
+          } else if constexpr (std::is_same_v<M, ProjectMotion>) {
+            level_set(m.target);
+          } else if constexpr (std::is_same_v<M, DisplaceMotion>) {
+            displacement(m.table, w.key("displace").key("file"));
+          }
+        },
+        bc.motion);
+  }
+
+ private:
+  const CaseFile& c_;
+  const Mesh& mesh_;
+};
+
+}  // namespace
+
+void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
+  const MeshChecker check(c, mesh);
+  if (c.order) {
+    const JsonWhere w{c.file.string(), "order"};
+    if (*c.order < mesh.order())
+      w.fail("the mesh is of order " + std::to_string(mesh.order()) + "; order cannot be lowered to " +
+             std::to_string(*c.order));
+    for (const auto& block : mesh.cells)
+      if (*c.order > max_order_of(block.type))
+        w.fail("order " + std::to_string(*c.order) + " is above the highest for " + std::string(name_of(block.type)) +
+               " cells (" + std::to_string(max_order_of(block.type)) + ")");
+  }
+  for (const auto& bc : c.boundary) check.boundary(bc);
+  if (c.interface) check.level_set(*c.interface);
+  if (c.trim) check.level_set(*c.trim);
+}
+
+}  // namespace meshmorph

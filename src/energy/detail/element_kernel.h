@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/element_energy.h"
+#include "energy/detail/isotropic_projection.h"
+
+namespace meshmorph::detail {
+
+/// Largest node count of an element the kernel accepts (hexahedron of order 4).
+inline constexpr int k_max_nodes = 125;
+
+template <int d>
+using NodalMatrix = Eigen::Matrix<double, d, Eigen::Dynamic, Eigen::ColMajor, d, k_max_nodes>;
+
+/// Per-thread work space of the element kernel. Sized on first use for a (n, Q); reused for
+/// every element of the same size without allocating.
+template <int d>
+struct ElementScratch {
+  static constexpr int n_pairs = d * (d + 1) / 2;  // blocks (k, l) with k ≤ l
+  Eigen::MatrixXd B;  // n × dQ: column block q is B_q = ∇N_q W_q⁻¹
+  Eigen::MatrixXd P;  // d × dQ: column block q is w_q dμ/dT(T_q)
+  Eigen::MatrixXd C;  // n × (n_pairs·dQ): block (pair, q) is B_q · w_q H_q^{kl}
+  Eigen::MatrixXd g;  // d × n: ∂E/∂X
+  Eigen::MatrixXd H;  // dn × dn, component-major local order k·n + a
+};
+
+/// E_e of one element (without ω_e). Fills s.g and s.H (component-major) as `want` asks;
+/// returns +∞, leaving them unspecified, when μ is not finite at some point.
+///
+/// The Hessian uses H_e^{kl} = Σ_q B_q H_q^{kl} B_qᵀ, with H_q^{kl}(j, m) = d²μ/dT_kj dT_lm:
+/// stacking the Q points side by side turns the sum into one n × dQ × n product per pair
+/// (k ≤ l); the blocks k > l are transposes.
+template <int d>
+double element_kernel(const Metric<d>& metric, const ShapeTable& table, const QuadratureTarget<d>* targets,
+                      const NodalMatrix<d>& X, Want want, HessianMode mode, ElementScratch<d>& s) {
+  const int n = table.n_nodes();
+  const int Q = table.n_points();
+  const bool grad = want != Want::Value;
+  const bool hess = want == Want::Hessian;
+  if (grad) {
+    s.B.resize(n, d * Q);
+    s.P.resize(d, d * Q);
+  }
+  if (hess) s.C.resize(n, ElementScratch<d>::n_pairs * d * Q);
+  double value = 0.0;
+  Eigen::Matrix<double, Eigen::Dynamic, d, Eigen::ColMajor, k_max_nodes, d> Bq(n, d);
+  for (int q = 0; q < Q; ++q) {
+    const QuadratureTarget<d>& t = targets[q];
+    Bq.noalias() = table.dN.middleCols(q * d, d) * t.W_inv;
+    const MatT<d> T = X.lazyProduct(Bq);
+    const MetricEval<d> ev = metric.eval(T, want);
+    if (!(ev.mu < std::numeric_limits<double>::infinity())) return std::numeric_limits<double>::infinity();
+    value += t.weight * ev.mu;
+    if (!grad) continue;
+    s.B.middleCols(q * d, d) = Bq;
+    s.P.middleCols(q * d, d) = t.weight * ev.dmu_dT;
+    if (!hess) continue;
+    HessT<d> Hq = ev.d2mu_dT2;
+    if (mode == HessianMode::Projected) project_isotropic<d>(T, Hq);
+    Hq *= t.weight;
+    int pair = 0;
+    for (int k = 0; k < d; ++k)
+      for (int l = k; l < d; ++l, ++pair) {
+        MatT<d> Hkl;
+        for (int j = 0; j < d; ++j)
+          for (int m = 0; m < d; ++m) Hkl(j, m) = Hq(k + d * j, l + d * m);
+        s.C.middleCols((pair * Q + q) * d, d).noalias() = Bq * Hkl;
+      }
+  }
+  if (grad) s.g.noalias() = s.P * s.B.transpose();
+  if (hess) {
+    s.H.resize(d * n, d * n);
+    int pair = 0;
+    for (int k = 0; k < d; ++k)
+      for (int l = k; l < d; ++l, ++pair) {
+        s.H.block(k * n, l * n, n, n).noalias() = s.C.middleCols(pair * Q * d, Q * d) * s.B.transpose();
+        if (l != k) {
+          s.H.block(l * n, k * n, n, n) = s.H.block(k * n, l * n, n, n).transpose();
+        } else {  // exact symmetry, so that the assembled matrix is symmetric bit for bit
+          for (int a = 0; a < n; ++a)
+            for (int b = 0; b < a; ++b) {
+              const double v = 0.5 * (s.H(k * n + a, k * n + b) + s.H(k * n + b, k * n + a));
+              s.H(k * n + a, k * n + b) = v;
+              s.H(k * n + b, k * n + a) = v;
+            }
+        }
+      }
+  }
+  return value;
+}
+
+}  // namespace meshmorph::detail

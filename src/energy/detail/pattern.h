@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "meshmorph/energy/dof_map.h"
+#include "meshmorph/mesh/topology.h"
+
+namespace meshmorph::detail {
+
+/// Topology::node_nodes annotated with free-DOF counts: the column of a free DOF of node B
+/// holds, for each neighbour A of B in sorted order, the free DOFs of A. `prefix[i]` is the
+/// position within such a column of the first row of neighbour node_nodes[i].
+struct NodePattern {
+  std::vector<std::int32_t> prefix;     // per node_nodes entry
+  std::vector<std::int32_t> row_count;  // per node: entries per column of its free DOFs
+};
+
+NodePattern build_node_pattern(const Topology& topology, const DofMap& dofs);
+
+/// The reduced Hessian's CSC pattern (n_free × n_free): column pointers `outer` (n_free + 1)
+/// and row indices `inner`. Throws std::invalid_argument when it has 2³¹ entries or more.
+void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const NodePattern& pattern,
+                             std::vector<int>& outer, std::vector<int>& inner);
+
+/// Greedy colouring of the cells of one block (global cell c = first_cell + local): a cell
+/// takes the smallest colour unused by the earlier cells that share a node with it. Output:
+/// cells sorted by colour then index (`order`) and the colour offsets into it.
+void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
+                 std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order);
+
+/// Scatter map of one block: entry (c, a + n·b) is NodePattern::prefix of node a in the row
+/// list of node b, i.e. the offset of a's rows in every column of b.
+std::vector<std::int32_t> scatter_offsets(const CellBlock& block, const Topology& topology, const NodePattern& pattern);
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+#include "energy/detail/pattern.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "meshmorph/error.h"
+
+namespace meshmorph::detail {
+
+NodePattern build_node_pattern(const Topology& topology, const DofMap& dofs) {
+  const std::size_t n_nodes = dofs.n_nodes();
+  NodePattern p;
+  p.prefix.resize(topology.node_nodes.size());
+  p.row_count.assign(n_nodes, 0);
+  const auto n = static_cast<std::int64_t>(n_nodes);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < n; ++b) {
+    std::int64_t count = 0;
+    for (auto i = topology.node_node_offset[static_cast<std::size_t>(b)];
+         i < topology.node_node_offset[static_cast<std::size_t>(b) + 1]; ++i) {
+      const auto a = static_cast<std::size_t>(topology.node_nodes[static_cast<std::size_t>(i)]);
+      p.prefix[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(count);
+      count += dofs.first(a + 1) - dofs.first(a);
+    }
+    p.row_count[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(count);
+  }
+  return p;
+}
+
+void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const NodePattern& pattern,
+                             std::vector<int>& outer, std::vector<int>& inner) {
+  const std::size_t n_nodes = dofs.n_nodes();
+  std::vector<std::int64_t> colptr(dofs.n_free() + 1, 0);
+  for (std::size_t b = 0; b < n_nodes; ++b)
+    for (std::int32_t col = dofs.first(b); col < dofs.first(b + 1); ++col)
+      colptr[static_cast<std::size_t>(col) + 1] = colptr[static_cast<std::size_t>(col)] + pattern.row_count[b];
+  MESHMORPH_CHECK(colptr.back() < std::numeric_limits<int>::max(),
+                  "EnergyAssembler: the Hessian has too many entries for 32-bit indices");
+  outer.assign(colptr.begin(), colptr.end());
+  inner.resize(static_cast<std::size_t>(colptr.back()));
+  const auto n = static_cast<std::int64_t>(n_nodes);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < n; ++b) {
+    const auto ub = static_cast<std::size_t>(b);
+    for (std::int32_t col = dofs.first(ub); col < dofs.first(ub + 1); ++col) {
+      int* rows = inner.data() + colptr[static_cast<std::size_t>(col)];
+      for (auto i = topology.node_node_offset[ub]; i < topology.node_node_offset[ub + 1]; ++i) {
+        const auto a = static_cast<std::size_t>(topology.node_nodes[static_cast<std::size_t>(i)]);
+        for (std::int32_t r = dofs.first(a); r < dofs.first(a + 1); ++r) *rows++ = r;
+      }
+    }
+  }
+}
+
+void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
+                 std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order) {
+  const std::size_t n_cells = block.n_cells();
+  const int n = block.n_nodes_per_cell();
+  std::vector<std::int32_t> color(n_cells, -1);
+  std::vector<std::int64_t> seen;  // seen[k] == c: colour k is taken by a neighbour of cell c
+  int n_colors = 0;
+  for (std::size_t c = 0; c < n_cells; ++c) {
+    const std::int32_t* nodes = block.cell(c);
+    for (int a = 0; a < n; ++a) {
+      const auto v = static_cast<std::size_t>(nodes[a]);
+      for (auto i = topology.node_cell_offset[v]; i < topology.node_cell_offset[v + 1]; ++i) {
+        const auto g = static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(i)]);
+        if (g < first_cell || g >= first_cell + n_cells) continue;
+        const std::int32_t k = color[g - first_cell];
+        if (k >= 0) seen[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(c);
+      }
+    }
+    int k = 0;
+    while (k < n_colors && seen[static_cast<std::size_t>(k)] == static_cast<std::int64_t>(c)) ++k;
+    if (k == n_colors) {
+      ++n_colors;
+      seen.push_back(-1);
+    }
+    color[c] = k;
+  }
+  color_offset.assign(static_cast<std::size_t>(n_colors) + 1, 0);
+  for (std::int32_t k : color) ++color_offset[static_cast<std::size_t>(k) + 1];
+  for (std::size_t k = 0; k < static_cast<std::size_t>(n_colors); ++k) color_offset[k + 1] += color_offset[k];
+  order.resize(n_cells);
+  std::vector<std::int32_t> fill(color_offset.begin(), color_offset.end() - 1);
+  for (std::size_t c = 0; c < n_cells; ++c)
+    order[static_cast<std::size_t>(fill[static_cast<std::size_t>(color[c])]++)] = static_cast<std::int32_t>(c);
+}
+
+std::vector<std::int32_t> scatter_offsets(const CellBlock& block, const Topology& topology, const NodePattern& pattern) {
+  const int n = block.n_nodes_per_cell();
+  const auto nn = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  std::vector<std::int32_t> offsets(block.n_cells() * nn);
+  const auto n_cells = static_cast<std::int64_t>(block.n_cells());
+  bool missing = false;
+#pragma omp parallel for schedule(static) reduction(|| : missing)
+  for (std::int64_t c = 0; c < n_cells; ++c) {
+    const std::int32_t* nodes = block.cell(static_cast<std::size_t>(c));
+    std::int32_t* out = offsets.data() + static_cast<std::size_t>(c) * nn;
+    for (int b = 0; b < n; ++b) {
+      const auto vb = static_cast<std::size_t>(nodes[b]);
+      const auto row_begin = topology.node_nodes.begin() + topology.node_node_offset[vb];
+      const auto row_end = topology.node_nodes.begin() + topology.node_node_offset[vb + 1];
+      for (int a = 0; a < n; ++a) {
+        const auto it = std::lower_bound(row_begin, row_end, nodes[a]);
+        if (it == row_end || *it != nodes[a]) {
+          missing = true;
+          continue;
+        }
+        out[a + n * b] = pattern.prefix[static_cast<std::size_t>(it - topology.node_nodes.begin())];
+      }
+    }
+  }
+  MESHMORPH_CHECK(!missing, "EnergyAssembler: Topology::node_nodes lacks a pair of nodes that share a cell");
+  return offsets;
+}
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "io/detail/mesh_builder.h"
+
+#include <algorithm>
+#include <set>
+#include <utility>
+
+#include "meshmorph/error.h"
+
+namespace meshmorph::detail {
+
+std::ptrdiff_t TagIndex::build(const std::vector<std::int64_t>& tags) {
+  dense_ = true;
+  table_.clear();
+  map_.clear();
+  if (tags.empty()) return -1;
+  const auto [lo, hi] = std::minmax_element(tags.begin(), tags.end());
+  min_ = *lo;
+  // Dense when the table is at most ~4x the number of nodes (typical Gmsh output is 1..n).
+  const auto span = static_cast<std::uint64_t>(*hi) - static_cast<std::uint64_t>(*lo);
+  dense_ = span < 4 * tags.size() + 1024;
+  if (dense_) {
+    table_.assign(static_cast<std::size_t>(span) + 1, -1);
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      std::int32_t& slot = table_[static_cast<std::size_t>(tags[i] - min_)];
+      if (slot >= 0) return static_cast<std::ptrdiff_t>(i);
+      slot = static_cast<std::int32_t>(i);
+    }
+  } else {
+    map_.reserve(tags.size());
+    for (std::size_t i = 0; i < tags.size(); ++i)
+      if (!map_.emplace(tags[i], static_cast<std::int32_t>(i)).second) return static_cast<std::ptrdiff_t>(i);
+  }
+  return -1;
+}
+
+CellBlock& MeshBuilder::block(ElementType type, int order) {
+  for (CellBlock& b : blocks_)
+    if (b.type == type && b.order == order) return b;
+  CellBlock b;
+  b.type = type;
+  b.order = order;
+  blocks_.push_back(std::move(b));
+  return blocks_.back();
+}
+
+Mesh MeshBuilder::finish(const std::string& where) {
+  Mesh mesh;
+  int top = 0;
+  for (const CellBlock& b : blocks_) top = std::max(top, topological_dim(b.type));
+  if (top < 2) throw InputError(where + ": no triangle, quadrilateral, tetrahedron or hexahedron cells");
+  mesh.dim = top;
+  if (mesh.dim == 2 && !first_nonzero_z.empty())
+    throw InputError(first_nonzero_z + ": node has z != 0 but the mesh has no 3D cells "
+                     "(surface meshes embedded in 3D are not supported)");
+  const std::size_t n = tags.size();
+  mesh.x.resize(mesh.dim, static_cast<Eigen::Index>(n));
+  for (std::size_t j = 0; j < n; ++j)
+    for (int k = 0; k < mesh.dim; ++k) mesh.x(k, static_cast<Eigen::Index>(j)) = xyz[3 * j + static_cast<std::size_t>(k)];
+  mesh.node_tags = std::move(tags);
+  for (CellBlock& b : blocks_) {
+    if (b.nodes.empty()) continue;
+    (topological_dim(b.type) == mesh.dim ? mesh.cells : mesh.facets).push_back(std::move(b));
+  }
+  blocks_.clear();
+  // Groups: the named ones as in the file, then tags used by elements without a name.
+  mesh.groups = std::move(named_groups);
+  std::set<std::pair<int, std::int32_t>> known;
+  for (const PhysicalGroup& g : mesh.groups) known.insert({g.dim, g.tag});
+  std::set<std::pair<int, std::int32_t>> unnamed;
+  for (const auto* list : {&mesh.facets, &mesh.cells})
+    for (const CellBlock& b : *list)
+      for (const std::int32_t t : b.physical)
+        if (t != 0 && !known.count({topological_dim(b.type), t})) unnamed.insert({topological_dim(b.type), t});
+  for (const auto& [d, t] : unnamed) mesh.groups.push_back(PhysicalGroup{d, t, ""});
+  return mesh;
+}
+
+}  // namespace meshmorph::detail

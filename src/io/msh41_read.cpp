@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+// MSH 4.1 sections ($Entities, $Nodes, $Elements), ASCII and binary (size_t = 8 bytes).
+#include <string>
+#include <vector>
+
+#include "io/detail/msh_reader.h"
+
+namespace meshmorph::detail {
+namespace {
+
+// A section header number: size_t in binary files, a token in ASCII files.
+std::uint64_t count(MshState& s, const char* what) {
+  return s.binary ? s.cur.raw<std::uint64_t>(what) : s.cur.integer<std::uint64_t>(what);
+}
+int small_int(MshState& s, const char* what) {
+  return s.binary ? s.cur.raw<std::int32_t>(what) : s.cur.integer<int>(what);
+}
+double real(MshState& s, const char* what) {
+  if (!s.binary) return s.cur.real(what);
+  const std::size_t at = s.cur.pos();
+  return finite_or_fail(s.cur, s.cur.raw<double>(what), at, what);
+}
+std::size_t here(MshState& s) { return s.binary ? s.cur.pos() : s.cur.token_start(); }
+
+void begin_binary(MshState& s) {
+  if (!s.binary) return;
+  s.cur.skip_line();  // the rest of the "$Section" line
+  s.cur.binary = true;
+}
+
+}  // namespace
+
+void read_msh41_entities(MshState& s) {
+  begin_binary(s);
+  std::uint64_t n[4];
+  for (auto& v : n) {
+    v = count(s, "number of entities");
+    s.check_count(v, s.binary ? 4 : 2, here(s));
+  }
+  for (int dim = 0; dim < 4; ++dim) {
+    for (std::uint64_t e = 0; e < n[dim]; ++e) {
+      const int tag = small_int(s, "entity tag");
+      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
+      const std::uint64_t n_phys = count(s, "number of physical tags");
+      s.check_count(n_phys, s.binary ? 4 : 2, here(s));
+      for (std::uint64_t k = 0; k < n_phys; ++k) {
+        const int phys = small_int(s, "physical tag");
+        if (k == 0) s.entity_physical[{dim, tag}] = phys;
+      }
+      if (dim > 0) {
+        const std::uint64_t n_bound = count(s, "number of bounding entities");
+        s.check_count(n_bound, s.binary ? 4 : 2, here(s));
+        for (std::uint64_t k = 0; k < n_bound; ++k) small_int(s, "bounding entity tag");
+      }
+    }
+  }
+}
+
+void read_msh41_nodes(MshState& s) {
+  begin_binary(s);
+  Cursor& c = s.cur;
+  const std::uint64_t n_blocks = count(s, "number of node blocks");
+  s.check_count(n_blocks, s.binary ? 20 : 8, here(s));
+  const std::uint64_t n_nodes = count(s, "number of nodes");
+  const std::size_t n_nodes_at = here(s);
+  s.check_count(n_nodes, s.binary ? 32 : 8, n_nodes_at);
+  count(s, "minimum node tag");
+  count(s, "maximum node tag");
+  s.builder.tags.reserve(n_nodes);
+  s.builder.xyz.reserve(3 * n_nodes);
+  std::uint64_t seen = 0;
+  std::vector<std::int64_t> block_tags;
+  for (std::uint64_t b = 0; b < n_blocks; ++b) {
+    const int dim = small_int(s, "entity dimension");
+    if (dim < 0 || dim > 3) c.fail_at(here(s), "entity dimension must be 0..3");
+    small_int(s, "entity tag");
+    const int parametric = small_int(s, "parametric flag");
+    if (parametric != 0 && parametric != 1) c.fail_at(here(s), "parametric flag must be 0 or 1");
+    const std::uint64_t n = count(s, "number of nodes in block");
+    s.check_count(n, s.binary ? 32 : 8, here(s));
+    seen += n;
+    if (seen > n_nodes) c.fail_at(here(s), "node blocks hold more nodes than the " + std::to_string(n_nodes) + " announced");
+    block_tags.resize(n);
+    for (auto& t : block_tags) {
+      const std::size_t at = here(s);
+      t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
+      if (t <= 0) c.fail_at(s.binary ? at : c.token_start(), "node tag must be positive");
+    }
+    const int n_param = parametric ? dim : 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const std::size_t at = s.binary ? c.pos() : (c.skip_space(), c.pos());
+      const double x = real(s, "x coordinate");
+      const double y = real(s, "y coordinate");
+      const double z = real(s, "z coordinate");
+      for (int k = 0; k < n_param; ++k) real(s, "parametric coordinate");
+      s.add_node(block_tags[i], x, y, z, at);
+    }
+  }
+  if (seen != n_nodes)
+    c.fail_at(n_nodes_at, "announced " + std::to_string(n_nodes) + " nodes but the blocks hold " + std::to_string(seen));
+}
+
+void read_msh41_elements(MshState& s) {
+  begin_binary(s);
+  Cursor& c = s.cur;
+  const std::uint64_t n_blocks = count(s, "number of element blocks");
+  s.check_count(n_blocks, s.binary ? 20 : 8, here(s));
+  const std::uint64_t n_elements = count(s, "number of elements");
+  const std::size_t n_elements_at = here(s);
+  s.check_count(n_elements, s.binary ? 16 : 4, n_elements_at);
+  count(s, "minimum element tag");
+  count(s, "maximum element tag");
+  std::uint64_t seen = 0;
+  std::vector<std::int64_t> tags;
+  for (std::uint64_t b = 0; b < n_blocks; ++b) {
+    const int dim = small_int(s, "entity dimension");
+    const std::size_t dim_at = here(s);
+    const int entity = small_int(s, "entity tag");
+    const int code = small_int(s, "element type");
+    const FamilyOrder fo = s.element_type(code, here(s));
+    if (topological_dim(fo.type) != dim)
+      c.fail_at(dim_at, "entity dimension " + std::to_string(dim) + " does not match element type " + std::to_string(code));
+    const std::uint64_t n = count(s, "number of elements in block");
+    const int k = n_nodes_of(fo.type, fo.order);
+    s.check_count(n, s.binary ? 8 * static_cast<std::size_t>(k + 1) : 2 * static_cast<std::size_t>(k + 1), here(s));
+    seen += n;
+    if (seen > n_elements)
+      c.fail_at(here(s), "element blocks hold more elements than the " + std::to_string(n_elements) + " announced");
+    const auto it = s.entity_physical.find({dim, entity});
+    const std::int32_t physical = it == s.entity_physical.end() ? 0 : it->second;
+    CellBlock& block = s.builder.block(fo.type, fo.order);
+    block.nodes.reserve(block.nodes.size() + n * static_cast<std::size_t>(k));
+    tags.resize(static_cast<std::size_t>(k));
+    for (std::uint64_t e = 0; e < n; ++e) {
+      const std::size_t at = s.binary ? c.pos() : (c.skip_space(), c.pos());
+      count(s, "element tag");
+      for (auto& t : tags)
+        t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
+      s.add_element(block, tags.data(), physical, entity, at);
+    }
+  }
+  if (seen != n_elements)
+    c.fail_at(n_elements_at, "announced " + std::to_string(n_elements) + " elements but the blocks hold " + std::to_string(seen));
+}
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/quality/edge_quality.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "meshmorph/error.h"
+#include "quality/detail/jet.h"
+
+namespace meshmorph {
+namespace {
+
+// The regular simplex of unit edge: its volume, its edges and the constant C of eq. 3.
+template <int d>
+struct RegularSimplex;
+
+template <>
+struct RegularSimplex<2> {
+  static double volume() { return std::sqrt(3.0) / 4.0; }
+  static double constant() { return 4.0 * std::sqrt(3.0); }
+  static const std::array<Eigen::Vector2d, 3>& edges() {
+    static const std::array<Eigen::Vector2d, 3> e = make_edges();
+    return e;
+  }
+  static std::array<Eigen::Vector2d, 3> make_edges() {
+    const Eigen::Vector2d v1(1.0, 0.0), v2(0.5, std::sqrt(3.0) / 2.0);
+    return {v1, v2, v2 - v1};
+  }
+};
+
+template <>
+struct RegularSimplex<3> {
+  static double volume() { return std::sqrt(2.0) / 12.0; }
+  static double constant() { return 36.0 * std::sqrt(2.0); }
+  static const std::array<Eigen::Vector3d, 6>& edges() {
+    static const std::array<Eigen::Vector3d, 6> e = make_edges();
+    return e;
+  }
+  static std::array<Eigen::Vector3d, 6> make_edges() {
+    const Eigen::Vector3d v1(1.0, 0.0, 0.0), v2(0.5, std::sqrt(3.0) / 2.0, 0.0),
+        v3(0.5, std::sqrt(3.0) / 6.0, std::sqrt(2.0 / 3.0));
+    return {v1, v2, v3, v2 - v1, v3 - v1, v3 - v2};
+  }
+};
+
+// Adds lᵈ = s^{d/2}, s = |T e|², to the jet L: ∇s = vec(2 T e eᵀ), ∇²s = 2 (e eᵀ) ⊗ I
+// (vec is column-major), accumulated in place without forming the jet of s.
+template <int d>
+void add_edge_power(detail::Jet<d>& L, const MatT<d>& T, const Eigen::Matrix<double, d, 1>& e, Want want) {
+  const Eigen::Matrix<double, d, 1> te = T * e;
+  const double s = te.squaredNorm();
+  const double k = 0.5 * d;
+  L.v += std::pow(s, k);
+  if (!detail::needs_gradient(want)) return;
+  const double f1 = k * std::pow(s, k - 1.0);
+  const Eigen::Matrix<double, d * d, 1> gs = (2.0 * te * e.transpose()).reshaped();
+  L.g += f1 * gs;
+  if (!detail::needs_hessian(want)) return;
+  // In 3D (s^{3/2})'' = ¾ s^{−1/2} multiplies ∇s∇sᵀ = O(s): the product tends to 0 at s = 0.
+  const double f2 = s > 0.0 ? k * (k - 1.0) * std::pow(s, k - 2.0) : 0.0;
+  L.H.noalias() += f2 * gs * gs.transpose();
+  for (int b = 0; b < d; ++b)
+    for (int c = 0; c < d; ++c) L.H.template block<d, d>(d * b, d * c).diagonal().array() += 2.0 * f1 * e(b) * e(c);
+}
+
+}  // namespace
+
+template <int d>
+EdgeQuality<d>::EdgeQuality(EdgeQualityOptions options) : options_(options) {
+  MESHMORPH_CHECK(options.delta >= 0.0 && std::isfinite(options.delta),
+                  "edge_quality: delta must be finite and >= 0, got " + std::to_string(options.delta));
+  MESHMORPH_CHECK(options.n < 0.0 && std::isfinite(options.n),
+                  "edge_quality: n must be finite and < 0, got " + std::to_string(options.n));
+}
+
+// F = exp(n·g) with g = log C + log h(V) − log L, L = Σ lⱼᵈ: logarithms turn the quotient
+// into sums, and h'/h = 1/r, h''/h − (h'/h)² = 2δ²/(r³h) − 1/r² with r = √(V² + 4δ²).
+template <int d>
+MetricEval<d> EdgeQuality<d>::eval(const MatT<d>& T, Want want) const {
+  using Reg = RegularSimplex<d>;
+  const double delta = options_.delta;
+  const detail::Jet<d> V = detail::affine(detail::determinant(T, want), Reg::volume(), 0.0, want);
+  const double r = std::sqrt(V.v * V.v + 4.0 * delta * delta);
+  // h = ½(V + r), written without cancellation for V < 0: (r + V)(r − V) = 4δ².
+  const double h = V.v >= 0.0 ? 0.5 * (V.v + r) : 2.0 * delta * delta / (r - V.v);
+  if (!(h > 0.0)) return detail::infinite_eval<d>();  // δ = 0 and V ≤ 0: q* = 0, F = +∞
+
+  detail::Jet<d> L;
+  for (const auto& e : Reg::edges()) add_edge_power<d>(L, T, e, want);
+  if (!(L.v > 0.0)) return detail::infinite_eval<d>();  // T = 0: every edge collapsed
+
+  const detail::Jet<d> log_h = detail::compose(V, std::log(h), 1.0 / r, 2.0 * delta * delta / (r * r * r * h) - 1.0 / (r * r), want);
+  const detail::Jet<d> log_L = detail::compose(L, std::log(L.v), 1.0 / L.v, -1.0 / (L.v * L.v), want);
+  const detail::Jet<d> g = detail::affine(detail::combine(1.0, log_h, -1.0, log_L, want), 1.0, std::log(Reg::constant()), want);
+  const double n = options_.n;
+  const double F = std::exp(n * g.v);
+  return detail::to_eval(detail::compose(g, F, n * F, n * n * F, want));
+}
+
+template class EdgeQuality<2>;
+template class EdgeQuality<3>;
+
+}  // namespace meshmorph

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/quality/quality_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/quality/element_quality.h"
+#include "meshmorph/quality/scaled_jacobian.h"
+
+namespace meshmorph {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void check_compatible(const Mesh& current, const Mesh& input) {
+  MESHMORPH_CHECK(input.dim == current.dim && input.n_nodes() == current.n_nodes() &&
+                      input.cells.size() == current.cells.size(),
+                  "quality_report: the input mesh does not match the current mesh");
+  for (std::size_t b = 0; b < current.cells.size(); ++b) {
+    const CellBlock &c = current.cells[b], &i = input.cells[b];
+    MESHMORPH_CHECK(c.type == i.type && c.order == i.order && c.nodes == i.nodes,
+                    "quality_report: cell block " + std::to_string(b) + " differs between input and current mesh");
+  }
+}
+
+// Summaries of a per-cell array: min and mean (NaN when empty) and the histogram.
+void summarize(const std::vector<double>& q, double& min, double& mean, std::array<std::size_t, 10>& histogram) {
+  if (q.empty()) {
+    min = mean = kNaN;
+    return;
+  }
+  double sum = 0.0;
+  min = q.front();
+  for (double v : q) {
+    min = std::min(min, v);
+    sum += v;
+    ++histogram[quality_bin(v)];
+  }
+  mean = sum / static_cast<double>(q.size());
+}
+
+}  // namespace
+
+std::size_t quality_bin(double q) {
+  if (!(q > 0.0)) return 0;
+  return std::min<std::size_t>(9, static_cast<std::size_t>(10.0 * q));
+}
+
+QualityReport quality_report(const Mesh& current, const Mesh* input) {
+  if (input) check_compatible(current, *input);
+  QualityReport r;
+  r.n_cells = current.n_cells();
+  r.has_input = input != nullptr;
+  r.shape_quality.resize(r.n_cells);
+  r.scaled_jacobian.resize(r.n_cells);
+  if (input) r.quality.resize(r.n_cells);
+  std::vector<std::uint8_t> inverted(r.n_cells, 0);
+
+  std::size_t offset = 0;
+  for (std::size_t b = 0; b < current.cells.size(); ++b) {
+    const CellBlock& block = current.cells[b];
+    const auto n = static_cast<std::int64_t>(block.n_cells());
+    // Each cell writes its own slots only; the reductions below run serially in cell order.
+#pragma omp parallel for schedule(static)
+    for (std::int64_t c = 0; c < n; ++c) {
+      const auto cell = static_cast<std::size_t>(c);
+      const std::size_t g = offset + cell;
+      const Eigen::MatrixXd X = cell_coordinates(current, block, cell);
+      const bool finite = X.allFinite();
+      inverted[g] = !finite || !(min_jacobian_det(block.type, block.order, X) > 0.0);
+      // element_quality() without its validity check, already done above.
+      const auto q_of = [&](const Eigen::MatrixXd* W) {
+        const double eta = inverted[g] ? 0.0 : element_distortion(block.type, block.order, X, W);
+        return std::isfinite(eta) && eta > 0.0 ? 1.0 / eta : 0.0;
+      };
+      r.shape_quality[g] = q_of(nullptr);
+      r.scaled_jacobian[g] = scaled_jacobian(block.type, block.order, X);
+      if (input) {
+        const Eigen::MatrixXd X_input = cell_coordinates(*input, input->cells[b], cell);
+        r.quality[g] = q_of(&X_input);
+      }
+    }
+    offset += block.n_cells();
+  }
+
+  r.inverted_elements = static_cast<std::size_t>(std::count(inverted.begin(), inverted.end(), std::uint8_t{1}));
+  summarize(r.shape_quality, r.min_shape_quality, r.mean_shape_quality, r.shape_histogram);
+  if (input) {
+    summarize(r.quality, r.min_quality, r.mean_quality, r.quality_histogram);
+  } else {
+    r.min_quality = r.mean_quality = kNaN;
+  }
+  r.min_scaled_jacobian = kNaN;
+  for (double s : r.scaled_jacobian) {
+    if (std::isfinite(s)) r.min_scaled_jacobian = std::isnan(r.min_scaled_jacobian) ? s : std::min(r.min_scaled_jacobian, s);
+  }
+  return r;
+}
+
+}  // namespace meshmorph

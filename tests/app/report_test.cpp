@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/app/report.h"
+
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "app/temp_dir.h"
+#include "meshmorph/error.h"
+
+namespace meshmorph {
+namespace {
+
+Report sample_report() {
+  Report r;
+  r.method = "morph";
+  r.case_file = "examples/01/case.json";
+  r.dim = 3;
+  r.order = 2;
+  r.nodes = 13522;
+  r.elements = 71234;
+  r.valid = true;
+  r.inverted_elements = 0;
+  r.min_quality = 0.575;
+  r.mean_quality = 0.93;
+  r.min_shape_quality = 0.31;
+  r.min_scaled_jacobian = 0.22;
+  r.boundary_error_max = 3e-9;
+  r.boundary_error_l2 = 1e-9;
+  r.iterations = IterationCounts{6, 8, 16, 16};
+  r.seconds = 1.23;
+  r.converged = true;
+  r.message = "converged: constraint norm 3e-9 < 1e-8";
+  r.history = {{{"outer", 1}, {"constraint_norm", 0.8}, {"min_quality", 0.41}, {"mu", 10.0}},
+               {{"outer", 2}, {"constraint_norm", 1e-3}, {"min_quality", 0.5}, {"mu", 100.0}}};
+  return r;
+}
+
+TEST(Report, WritesTheDocumentedKeysInOrder) {
+  const auto j = report_to_json(sample_report());
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  const std::vector<std::string> expected = {
+      "meshmorph_version", "method", "case", "dim", "order", "nodes", "elements", "valid", "inverted_elements",
+      "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
+      "boundary_error_l2", "fit_error_max", "iterations", "seconds", "peak_memory_mb", "converged", "message",
+      "history"};
+  EXPECT_EQ(keys, expected);
+  EXPECT_TRUE(j["fit_error_max"].is_null());
+  EXPECT_EQ(j["iterations"]["newton"], 16);
+  EXPECT_EQ(j["history"][1]["mu"], 100.0);
+  EXPECT_EQ(j["history"][0].begin().key(), "outer");
+}
+
+TEST(Report, NotApplicableAndNonFiniteValuesAreNull) {
+  Report r;
+  r.method = "quality";
+  r.min_quality = std::numeric_limits<double>::infinity();
+  r.history = {{{"x", std::nan("")}}};
+  const auto j = report_to_json(r);
+  for (const char* key : {"case", "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian",
+                          "boundary_error_max", "boundary_error_l2", "fit_error_max", "iterations", "peak_memory_mb"})
+    EXPECT_TRUE(j[key].is_null()) << key;
+  EXPECT_TRUE(j["history"][0]["x"].is_null());
+}
+
+TEST(Report, RoundTripsThroughAFile) {
+  test::TempDir dir;
+  const auto path = dir.path() / "report.json";
+  const Report in = sample_report();
+  write_report(path, in);
+  const Report out = read_report(path);
+  Report expected = in;
+  expected.meshmorph_version = meshmorph_version();
+  ASSERT_TRUE(out.peak_memory_mb);
+  EXPECT_GT(*out.peak_memory_mb, 0.0);
+  expected.peak_memory_mb = out.peak_memory_mb;
+  EXPECT_EQ(out, expected);
+  EXPECT_EQ(out.meshmorph_version, "0.1.0");
+  // Only the report itself is left in the folder: the temporary file was renamed.
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
+}
+
+TEST(Report, PeakMemoryIsPositive) {
+  EXPECT_GT(peak_memory_mb(), 1.0);
+  EXPECT_LT(peak_memory_mb(), 1e6);
+}
+
+TEST(Report, ReadingRejectsUnknownAndMistypedKeys) {
+  auto j = report_to_json(sample_report());
+  j["extra"] = 1;
+  EXPECT_THROW(report_from_json(j, "r.json"), InputError);
+  j = report_to_json(sample_report());
+  j["valid"] = "yes";
+  try {
+    report_from_json(j, "r.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "r.json: valid: expected true or false, found a string");
+  }
+}
+
+}  // namespace
+}  // namespace meshmorph

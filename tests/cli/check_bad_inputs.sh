@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# check_bad_inputs.sh MESHMORPH DIR WORK: every file of DIR, given to `quality` and to
+# `convert`, must give exit code 2, a stderr message naming the file and a line or byte
+# offset, and no output file.
+set -u
+mm=$1 dir=$2 work=$3
+rm -rf "$work" && mkdir -p "$work/out"
+failures=0 count=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+for f in "$dir"/*; do
+  count=$((count + 1))
+  for cmd in "quality $f --json $work/out/q.json -o $work/out/q.vtu" "convert $f $work/out/c.vtu" \
+             "convert $f $work/out/c.msh --order 2"; do
+    # shellcheck disable=SC2086
+    "$mm" $cmd >"$work/stdout" 2>"$work/stderr"
+    rc=$?
+    [ "$rc" -eq 2 ] || fail "meshmorph $cmd: exit $rc, expected 2"
+    grep -Eq "^meshmorph: error: $f(:[0-9]+|: (line|byte offset) [0-9]+)" "$work/stderr" ||
+      fail "meshmorph $cmd: stderr does not name the file and a line/offset: $(head -c 300 "$work/stderr")"
+    if [ -n "$(ls -A "$work/out")" ]; then
+      fail "meshmorph $cmd: wrote $(ls -A "$work/out")"
+      rm -f "$work/out"/*
+    fi
+  done
+done
+[ "$count" -ge 1 ] || fail "no files in $dir"
+echo "$count bad inputs checked, $failures failures"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/io/atomic_file.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/error.h"
+
+namespace meshmorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t n_entries(const fs::path& dir) {
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+class AtomicFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("meshmorph_atomic_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    fs::permissions(dir_, fs::perms::owner_all);
+    fs::remove_all(dir_);
+  }
+  fs::path dir_;
+};
+
+TEST_F(AtomicFile, WritesTheContentAndLeavesNoTemporary) {
+  const fs::path p = dir_ / "out.txt";
+  write_atomically(p, true, [](std::ostream& o) { o << "hello\n"; });
+  EXPECT_EQ(slurp(p), "hello\n");
+  EXPECT_EQ(n_entries(dir_), 1u);
+  write_atomically(p, false, [](std::ostream& o) { o << "replaced"; });
+  EXPECT_EQ(slurp(p), "replaced");
+  EXPECT_EQ(n_entries(dir_), 1u);
+}
+
+TEST_F(AtomicFile, AnExceptionLeavesTheOldFileAndNoTemporary) {
+  const fs::path p = dir_ / "out.txt";
+  std::ofstream(p) << "old";
+  EXPECT_THROW(write_atomically(p, true,
+                                [](std::ostream& o) {
+                                  o << "partial new content";
+                                  throw InputError("cannot hold this mesh");
+                                }),
+               InputError);
+  EXPECT_EQ(slurp(p), "old");
+  EXPECT_EQ(n_entries(dir_), 1u);
+  // No file at all is created when there was none.
+  EXPECT_THROW(write_atomically(dir_ / "new.txt", true, [](std::ostream&) { throw std::runtime_error("x"); }),
+               std::runtime_error);
+  EXPECT_FALSE(fs::exists(dir_ / "new.txt"));
+  EXPECT_EQ(n_entries(dir_), 1u);
+}
+
+TEST_F(AtomicFile, AMissingFolderIsAnIoError) {
+  EXPECT_THROW(write_atomically(dir_ / "no" / "such" / "out.txt", true, [](std::ostream& o) { o << 1; }), IoError);
+}
+
+TEST_F(AtomicFile, AReadOnlyFolderIsAnIoError) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root can write into read-only folders";
+  fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_THROW(write_atomically(dir_ / "out.txt", true, [](std::ostream& o) { o << 1; }), IoError);
+}
+
+}  // namespace
+}  // namespace meshmorph

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+// Every file in tests/data/bad is malformed: reading it throws InputError whose message names
+// the file and a line ("file: line N: …") or byte offset ("file: byte offset N: …") and says
+// what is wrong. The CLI tests reuse the folder (exit code 2 for `meshmorph convert`).
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What each message must say (a fragment), so that a file fails for the intended reason.
+const std::map<std::string, std::string>& expected_reasons() {
+  static const std::map<std::string, std::string> m{
+      {"medit_bad_coordinate.mesh", "line 7: expected coordinate (a number), got '1e999'"},
+      {"medit_bad_dimension.mesh", "line 2: Dimension must be 2 or 3"},
+      {"medit_curved_triangles.mesh", "line 9: curved Medit elements"},
+      {"medit_missing_count.mesh", "line 4: expected number of vertices"},
+      {"medit_truncated.mesh", "unexpected end of file"},
+      {"medit_unknown_keyword.mesh", "line 9: unknown or unsupported Medit keyword 'Pentagons'"},
+      {"medit_vertex_index_too_large.mesh", "line 12: vertex index 5 is outside 1..4"},
+      {"medit_vertex_index_zero.mesh", "line 12: vertex index 0 is outside 1..4"},
+      {"msh22_bad_number.msh", "line 8: expected z coordinate (a number), got 'x'"},
+      {"msh22_bad_tag_count.msh", "line 13: number of tags must be 0..1000"},
+      {"msh22_binary_cut.msh", "byte offset"},
+      {"msh22_binary_cut_elements.msh", "byte offset"},
+      {"msh22_prism.msh", "prism element type 6"},
+      {"msh22_truncated.msh", "line 12: count 2 is larger than the rest of the file can hold"},
+      {"msh22_wrong_element_count.msh", "expected element tag"},
+      {"msh40_header.msh", "line 2: MSH 4.0 is not supported"},
+      {"msh41_bad_number.msh", "line 16: expected y coordinate (a number), got '0.5.3'"},
+      {"msh41_binary_cut.msh", "byte offset"},
+      {"msh41_binary_endianness.msh", "byte offset 20: binary MSH with a foreign byte order"},
+      {"msh41_duplicate_node_tag.msh", "duplicate node tag 3"},
+      {"msh41_elements_before_nodes.msh", "line 8: $Elements before $Nodes"},
+      {"msh41_huge_node_count.msh", "count 99999999999 is larger than the rest of the file"},
+      {"msh41_inf_coordinate.msh", "line 17: x coordinate is not finite"},
+      {"msh41_missing_endnodes.msh", "expected $EndNodes, got '$Elements'"},
+      {"msh41_nan_coordinate.msh", "line 16: y coordinate is not finite"},
+      {"msh41_negative_count.msh", "expected number of nodes (an integer), got '-4'"},
+      {"msh41_no_cells.msh", "no triangle, quadrilateral, tetrahedron or hexahedron cells"},
+      {"msh41_nonzero_z_without_3d_cells.msh", "line 17: node has z != 0"},
+      {"msh41_physical_name_missing_quote.msh", "line 6: missing closing quote"},
+      {"msh41_serendipity_quad8.msh", "serendipity/incomplete element type 16 (QUA_8)"},
+      {"msh41_too_few_element_nodes.msh", "expected node tag (an integer), got '$EndElements'"},
+      {"msh41_truncated.msh", "line 13: count 4 is larger than the rest of the file can hold"},
+      {"msh41_undefined_node_tag.msh", "line 24: element references undefined node tag 9"},
+      {"msh41_unknown_element_type.msh", "unsupported element type 200"},
+      {"msh41_unterminated_section.msh", "section $Comments has no $EndComments"},
+      {"msh41_wrong_node_count.msh", "announced 5 nodes but the blocks hold 4"},
+      {"msh_empty.msh", "line 1: empty file"},
+      {"msh_not_gmsh.msh", "line 1: expected $MeshFormat, got 'solid'"},
+      {"msh_version_3.msh", "unsupported MSH version '3.0'"},
+      {"vtu_bad_xml.vtu", "XML error"},
+      {"vtu_base64_garbage.vtu", "invalid base64"},
+      {"vtu_empty.vtu", "line 1: empty file"},
+      {"vtu_index_out_of_range.vtu", "connectivity index 4 is out of range"},
+      {"vtu_missing_connectivity.vtu", "Cells needs DataArrays 'connectivity', 'offsets' and 'types'"},
+      {"vtu_nan_point.vtu", "non-finite value"},
+      {"vtu_not_unstructured_grid.vtu", "VTKFile type must be UnstructuredGrid"},
+      {"vtu_offsets_decreasing.vtu", "offsets do not match the connectivity (cell 1)"},
+      {"vtu_offsets_not_matching.vtu", "offsets do not match the connectivity (cell 1)"},
+      {"vtu_points_two_components.vtu", "Points must have 3 components"},
+      {"vtu_serendipity_quad8.vtu", "unsupported VTK cell type 23"},
+      {"vtu_too_few_points.vtu", "holds 9 values, expected 12"},
+      {"vtu_unknown_cell_type.vtu", "unsupported VTK cell type 42 (cell 1)"},
+      {"vtu_wrong_lagrange_point_count.vtu", "has 7 points, which is no complete Lagrange cell"},
+  };
+  return m;
+}
+
+TEST(BadInput, EveryFileGivesInputErrorNamingFileAndPosition) {
+  const fs::path dir = fs::path(MESHMORPH_TEST_DATA) / "bad";
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    SCOPED_TRACE(name);
+    ++n;
+    try {
+      read_mesh(entry.path());
+      ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(name), std::string::npos) << msg;
+      EXPECT_TRUE(msg.find(name + ": line ") != std::string::npos || msg.find(name + ": byte offset ") != std::string::npos) << msg;
+      const auto it = expected_reasons().find(name);
+      ASSERT_NE(it, expected_reasons().end()) << "add the expected reason of " << name << ": " << msg;
+      EXPECT_NE(msg.find(it->second), std::string::npos) << msg;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not an InputError: " << e.what();
+    }
+  }
+  EXPECT_EQ(n, static_cast<int>(expected_reasons().size()));
+}
+
+TEST(BadInput, UnknownExtensionAndMissingFile) {
+  EXPECT_THROW(read_mesh("mesh.stl"), InputError);
+  EXPECT_THROW(read_mesh(fs::path(MESHMORPH_TEST_DATA) / "bad" / "does_not_exist.msh"), IoError);
+}
+
+// Every prefix of a valid file is either an InputError naming a position or (Medit, whose
+// End keyword is optional) a valid mesh; never a crash or another exception.
+TEST(BadInput, EveryTruncationIsAnInputError) {
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_truncate_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Mesh m = structured_mesh(ElementType::Quadrilateral, 2, 1);
+  const Mesh linear = structured_mesh(ElementType::Tetrahedron, 1, 1);
+  struct Variant {
+    const char* name;
+    MeshFormat format;
+    bool binary;
+  };
+  for (const Variant v : {Variant{"a41.msh", MeshFormat::Msh41, false}, Variant{"b41.msh", MeshFormat::Msh41, true},
+                          Variant{"a22.msh", MeshFormat::Msh22, false}, Variant{"b22.msh", MeshFormat::Msh22, true},
+                          Variant{"a.vtu", MeshFormat::Vtu, false}, Variant{"b.vtu", MeshFormat::Vtu, true},
+                          Variant{"m.mesh", MeshFormat::Medit, false}}) {
+    SCOPED_TRACE(v.name);
+    const fs::path full = dir / (std::string("full_") + v.name);
+    write_mesh(full, v.format == MeshFormat::Medit ? linear : m, {v.format, v.binary, {}});
+    std::ifstream in(full, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const fs::path cut = dir / v.name;
+    int errors = 0;
+    // About 100 cut points per file (file I/O dominates), plus every cut near the end.
+    const std::size_t stride = std::max<std::size_t>(1, bytes.size() / 100);
+    int cuts = 0;
+    for (std::size_t n = 0; n < bytes.size(); n += (n + 40 >= bytes.size() ? 1 : stride)) {
+      ++cuts;
+      std::ofstream(cut, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(n));
+      try {
+        read_mesh(cut);
+        const bool only_space_cut = bytes.find_first_not_of(" \n", n) == std::string::npos;
+        EXPECT_TRUE(v.format == MeshFormat::Medit || only_space_cut) << "a prefix of " << n << " bytes was accepted";
+      } catch (const InputError& e) {
+        const std::string msg = e.what();
+        ++errors;
+        if (msg.find(": line ") == std::string::npos && msg.find(": byte offset ") == std::string::npos)
+          ADD_FAILURE() << "no position at " << n << " bytes: " << msg;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "not an InputError at " << n << " bytes: " << e.what();
+      }
+    }
+    EXPECT_GT(errors, cuts / 2);
+    EXPECT_NO_THROW(read_mesh(full));
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace meshmorph

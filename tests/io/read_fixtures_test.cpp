@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// Files written by other tools: Gmsh 4.8.4 (tests/data/io/*.geo, see docs/formats.md) and
+// meshio 5.0.0 (from gmsh_tri6_41a.msh / gmsh_tet4_22a.msh).
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "io/mesh_compare.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph {
+namespace {
+
+std::string data(const std::string& name) { return std::string(MESHMORPH_TEST_DATA) + "/io/" + name; }
+
+std::size_t count(const std::vector<CellBlock>& blocks, ElementType type, int order) {
+  std::size_t n = 0;
+  for (const CellBlock& b : blocks) n += b.type == type && b.order == order ? b.n_cells() : 0;
+  return n;
+}
+
+TEST(ReadFixtures, GmshP2TrianglesInAllFourEncodingsAgree) {
+  const Mesh m = read_mesh(data("gmsh_tri6_41a.msh"));
+  EXPECT_EQ(m.dim, 2);
+  EXPECT_EQ(m.n_nodes(), 277u);
+  ASSERT_EQ(m.cells.size(), 1u);
+  EXPECT_EQ(m.cells[0].type, ElementType::Triangle);
+  EXPECT_EQ(m.cells[0].order, 2);
+  EXPECT_EQ(m.cells[0].n_cells(), 121u);
+  EXPECT_EQ(count(m.facets, ElementType::Line, 2), 35u);
+  EXPECT_EQ(test::sorted_groups(m), (std::vector<std::tuple<int, int, std::string>>{
+                                        {1, 20, "hole wall"}, {1, 21, "outer"}, {2, 10, "fluid"}}));
+  for (const std::int32_t t : m.cells[0].physical) EXPECT_EQ(t, 10);
+  const auto hole = m.find_group("hole wall");
+  ASSERT_TRUE(hole.has_value());
+  EXPECT_EQ(m.group_nodes(*hole).size(), 2u * 7u);  // a closed curve of 7 P2 edges: 14 nodes
+  // Gmsh prints 16 significant digits in ASCII, so ASCII and binary differ by an ulp.
+  test::expect_meshes_equal(m, read_mesh(data("gmsh_tri6_22a.msh")));
+  for (const char* binary : {"gmsh_tri6_41b.msh", "gmsh_tri6_22b.msh"}) {
+    SCOPED_TRACE(binary);
+    test::expect_meshes_equal(m, read_mesh(data(binary)), {.tolerance = 1e-15});
+  }
+}
+
+TEST(ReadFixtures, GmshTetrahedraOrder1And3) {
+  const Mesh p3 = read_mesh(data("gmsh_tet20_41b.msh"));
+  const Mesh p1 = read_mesh(data("gmsh_tet4_22a.msh"));
+  EXPECT_EQ(p3.dim, 3);
+  EXPECT_EQ(p1.dim, 3);
+  EXPECT_EQ(count(p3.cells, ElementType::Tetrahedron, 3), 101u);
+  EXPECT_EQ(count(p1.cells, ElementType::Tetrahedron, 1), 101u);
+  EXPECT_EQ(count(p3.facets, ElementType::Triangle, 3), 84u);
+  EXPECT_EQ(count(p1.facets, ElementType::Triangle, 1), 84u);
+  EXPECT_EQ(p1.n_nodes(), 45u);
+  EXPECT_EQ(p3.n_nodes(), 663u);
+  EXPECT_EQ(test::sorted_groups(p3), test::sorted_groups(p1));
+  EXPECT_TRUE(p3.x.rowwise().minCoeff().isZero());
+  EXPECT_TRUE(p3.x.rowwise().maxCoeff().isOnes());
+}
+
+TEST(ReadFixtures, GmshQuadrilaterals) {
+  const Mesh m = read_mesh(data("gmsh_quad_41a.msh"));
+  EXPECT_EQ(m.dim, 2);
+  EXPECT_EQ(count(m.cells, ElementType::Quadrilateral, 1), 73u);
+}
+
+TEST(ReadFixtures, MeshioVtuInAsciiRawAndZlibMatchesTheGmshSource) {
+  const Mesh gmsh = read_mesh(data("gmsh_tri6_41a.msh"));
+  for (const char* name : {"meshio_tri6_ascii.vtu", "meshio_tri6_raw.vtu", "meshio_tri6_zlib.vtu"}) {
+    SCOPED_TRACE(name);
+    const Mesh m = read_mesh(data(name));
+    ASSERT_EQ(m.x.cols(), gmsh.x.cols());
+    EXPECT_LT((m.x - gmsh.x).cwiseAbs().maxCoeff(), 1e-11);  // meshio's ASCII has ~12 digits
+    ASSERT_EQ(m.cells.size(), 1u);
+    EXPECT_EQ(m.cells[0].nodes, gmsh.cells[0].nodes);      // VTK type 22 = Gmsh order at p2
+    EXPECT_EQ(m.cells[0].physical, gmsh.cells[0].physical);  // "material" cell array
+    EXPECT_EQ(count(m.facets, ElementType::Line, 2), 35u);
+  }
+}
+
+TEST(ReadFixtures, MeshioMedit) {
+  const Mesh m = read_mesh(data("meshio_tet4.mesh"));
+  const Mesh gmsh = read_mesh(data("gmsh_tet4_22a.msh"));
+  EXPECT_EQ(m.dim, 3);
+  EXPECT_LT((m.x - gmsh.x).cwiseAbs().maxCoeff(), 1e-15);
+  ASSERT_EQ(m.cells.size(), 1u);
+  EXPECT_EQ(m.cells[0].nodes, gmsh.cells[0].nodes);
+  EXPECT_EQ(m.cells[0].physical, gmsh.cells[0].physical);
+}
+
+}  // namespace
+}  // namespace meshmorph

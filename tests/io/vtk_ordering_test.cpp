@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/io/vtk_ordering.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+#include "meshmorph/fem/reference_element.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+ElementType family(const std::string& name) {
+  if (name == "triangle") return ElementType::Triangle;
+  if (name == "quadrilateral") return ElementType::Quadrilateral;
+  if (name == "tetrahedron") return ElementType::Tetrahedron;
+  return ElementType::Hexahedron;
+}
+
+// Reference coordinates of the Gmsh nodes mapped to VTK's parametric domain ([0,1]^d).
+Eigen::MatrixXd gmsh_nodes_in_vtk_domain(ElementType type, int order) {
+  Eigen::MatrixXd x = reference_element(type, order).nodes;
+  if (!is_simplex(type)) x = (x.array() + 1.0) / 2.0;
+  return x;
+}
+
+// Permutations measured with Gmsh 4.8.4 and VTK 9.1.0 on this machine (shared/reference).
+TEST(VtkOrdering, PermutationsMatchGmshAndVtkReferenceData) {
+  std::ifstream in(std::string(MESHMORPH_TEST_DATA) + "/io/gmsh_vtk_node_permutations.json");
+  ASSERT_TRUE(in) << "missing tests/data/io/gmsh_vtk_node_permutations.json";
+  const nlohmann::json data = nlohmann::json::parse(in);
+  int checked = 0;
+  for (const auto& [key, cell] : data.at("cells").items()) {
+    SCOPED_TRACE(key);
+    const std::size_t sep = key.find("_p");
+    const ElementType type = family(key.substr(0, sep));
+    const int order = std::stoi(key.substr(sep + 2));
+    EXPECT_EQ(vtk_cell_type(type), cell.at("vtk_type").get<int>());
+    const auto expected = cell.at("vtk_index_to_gmsh_index").get<std::vector<int>>();
+    EXPECT_EQ(vtk_to_gmsh_permutation(type, order), expected);
+    // The internal reference element is Gmsh's: same coordinates in the same order.
+    const auto gmsh = cell.at("gmsh_ref_coords").get<std::vector<std::vector<double>>>();
+    const Eigen::MatrixXd& nodes = reference_element(type, order).nodes;
+    ASSERT_EQ(static_cast<std::size_t>(nodes.cols()), gmsh.size());
+    for (std::size_t i = 0; i < gmsh.size(); ++i)
+      for (std::size_t k = 0; k < gmsh[i].size(); ++k)
+        EXPECT_NEAR(nodes(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)), gmsh[i][k], 1e-12);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 16);
+}
+
+TEST(VtkOrdering, ParametricPointsOfLinearCellsAreVtkCorners) {
+  const Eigen::MatrixXd hex = vtk_lagrange_points(ElementType::Hexahedron, 1);
+  Eigen::MatrixXd expected(3, 8);
+  expected << 0, 1, 1, 0, 0, 1, 1, 0,  //
+      0, 0, 1, 1, 0, 0, 1, 1,          //
+      0, 0, 0, 0, 1, 1, 1, 1;
+  EXPECT_TRUE(hex == expected);
+  EXPECT_EQ(vtk_lagrange_points(ElementType::Line, 3).cols(), 4);
+  EXPECT_DOUBLE_EQ(vtk_lagrange_points(ElementType::Line, 3)(0, 2), 1.0 / 3.0);
+}
+
+// One cell whose node i (internal order) sits at the i-th Gmsh reference point: in the
+// written .vtu, the point of the cell's i-th VTK node is VTK's i-th parametric point, and
+// reading the file back puts every node where it was.
+TEST(VtkOrdering, WrittenCellNodesSitAtVtkParametricPoints) {
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_vtk_order_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const ElementType type : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron, ElementType::Hexahedron})
+    for (int order = 1; order <= max_order_of(type); ++order)
+      for (const bool binary : {false, true}) {
+        SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order) + (binary ? " binary" : " ascii"));
+        const Eigen::MatrixXd ref = gmsh_nodes_in_vtk_domain(type, order);
+        Mesh m;
+        m.dim = topological_dim(type);
+        m.x = ref;
+        for (Eigen::Index i = 0; i < ref.cols(); ++i) m.node_tags.push_back(i + 1);
+        CellBlock b;
+        b.type = type;
+        b.order = order;
+        for (Eigen::Index i = 0; i < ref.cols(); ++i) b.nodes.push_back(static_cast<std::int32_t>(i));
+        b.physical = {1};
+        b.entity = {1};
+        m.cells.push_back(b);
+        const fs::path p = dir / "cell.vtu";
+        WriteOptions opt;
+        opt.binary = binary;
+        write_mesh(p, m, opt);
+
+        const Mesh r = read_mesh(p);
+        ASSERT_EQ(r.cells.size(), 1u);
+        EXPECT_TRUE(r.x == m.x);
+        EXPECT_EQ(r.cells[0].nodes, b.nodes);
+        if (binary) continue;
+        // In the ASCII file: connectivity[i] is a point at VTK's i-th parametric coordinate.
+        pugi::xml_document doc;
+        ASSERT_TRUE(doc.load_file(p.c_str()));
+        const auto piece = doc.child("VTKFile").child("UnstructuredGrid").child("Piece");
+        std::istringstream pts(piece.child("Points").child("DataArray").text().get());
+        std::vector<double> xyz{std::istream_iterator<double>(pts), std::istream_iterator<double>()};
+        std::istringstream conn_text(piece.child("Cells").find_child_by_attribute("Name", "connectivity").text().get());
+        std::vector<int> conn{std::istream_iterator<int>(conn_text), std::istream_iterator<int>()};
+        const Eigen::MatrixXd vtk = vtk_lagrange_points(type, order);
+        ASSERT_EQ(conn.size(), static_cast<std::size_t>(vtk.cols()));
+        for (std::size_t i = 0; i < conn.size(); ++i)
+          for (Eigen::Index k = 0; k < vtk.rows(); ++k)
+            EXPECT_NEAR(xyz[3 * static_cast<std::size_t>(conn[i]) + static_cast<std::size_t>(k)], vtk(k, static_cast<Eigen::Index>(i)), 1e-14)
+                << "VTK node " << i;
+      }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace meshmorph
