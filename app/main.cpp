@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   meshmorph::add_common_options(app, common);
   meshmorph::add_quality_command(app, run);
   meshmorph::add_convert_command(app, run);
+  meshmorph::add_check_command(app, run);
   app.require_subcommand(1);
 
   try {

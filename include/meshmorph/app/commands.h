@@ -34,5 +34,7 @@ void apply_common_options(const CommonOptions& options);
 void add_quality_command(CLI::App& app, Command& run);
 /// `meshmorph convert IN OUT [--order P] [--binary] [--msh22]`; sets `run` when chosen.
 void add_convert_command(CLI::App& app, Command& run);
+/// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
+void add_check_command(CLI::App& app, Command& run);
 
 }  // namespace meshmorph
