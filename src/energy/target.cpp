@@ -9,21 +9,10 @@
 #include "energy/detail/element_kernel.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/quadrature.h"
+#include "meshmorph/quality/element_quality.h"
 
 namespace meshmorph {
 namespace {
-
-template <int d>
-MatT<d> regular_simplex() {
-  // Columns: corners 1..d of a regular simplex with unit edges and corner 0 at the origin.
-  MatT<d> W = MatT<d>::Zero();
-  if constexpr (d == 2) {
-    W << 1.0, 0.5, 0.0, std::sqrt(3.0) / 2.0;
-  } else {
-    W << 1.0, 0.5, 0.5, 0.0, std::sqrt(3.0) / 2.0, std::sqrt(3.0) / 6.0, 0.0, 0.0, std::sqrt(2.0 / 3.0);
-  }
-  return W;
-}
 
 std::string where(std::size_t block, std::size_t cell) {
   return "cell " + std::to_string(cell) + " of cell block " + std::to_string(block);
@@ -35,14 +24,11 @@ template <int d>
 MatT<d> ideal_jacobian(ElementType type, double volume) {
   MESHMORPH_CHECK(volume > 0.0, "ideal_jacobian: the volume must be positive");
   MESHMORPH_CHECK(topological_dim(type) == d, "ideal_jacobian: the family's dimension differs from d");
-  if (is_simplex(type)) {
-    // ∫_ref |det W| = det(s·W_reg) / d!  ⇒  s = (d! · volume / det W_reg)^{1/d}
-    const MatT<d> W_reg = regular_simplex<d>();
-    const double factorial = d == 2 ? 2.0 : 6.0;
-    return std::pow(factorial * volume / W_reg.determinant(), 1.0 / d) * W_reg;
-  }
-  // [−1, 1]^d has measure 2^d: W = s·I with (2s)^d = volume.
-  return 0.5 * std::pow(volume, 1.0 / d) * MatT<d>::Identity();
+  // W = s·W₀ with W₀ the unit-edge regular simplex or [−1, 1]^d → cube map of quality/, and s
+  // such that ∫_ref |det W| = s^d · det W₀ · |ref| = volume (|ref| = 1/d! or 2^d).
+  const MatT<d> W0 = ideal_jacobian(type);
+  const double ref_measure = is_simplex(type) ? (d == 2 ? 0.5 : 1.0 / 6.0) : (d == 2 ? 4.0 : 8.0);
+  return std::pow(volume / (ref_measure * W0.determinant()), 1.0 / d) * W0;
 }
 
 template <int d>
