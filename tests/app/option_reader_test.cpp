@@ -71,14 +71,16 @@ TEST(OptionReader, RejectsUnknownWrongTypeAndOutOfRange) {
 }
 
 TEST(OptionReader, MethodWithoutOptionsRejectsAny) {
-  OptionReader r(json::parse(R"({"x": 1})"), "c.json");
+  const json options = json::parse(R"({"x": 1})");
+  OptionReader r(options, "c.json");
   try {
     r.finish();
     FAIL();
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "c.json: options.x: unknown option (this method takes none)");
   }
-  EXPECT_THROW(OptionReader(json::array(), "c.json"), InputError);
+  const json array = json::array();
+  EXPECT_THROW(OptionReader(array, "c.json"), InputError);
 }
 
 }  // namespace

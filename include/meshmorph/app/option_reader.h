@@ -25,6 +25,8 @@ class OptionReader {
  public:
   /// `options` must be a JSON object; `file` names the case file in messages.
   OptionReader(const nlohmann::json& options, std::string file, std::string path = "options");
+  /// The reader keeps a reference to `options`: a temporary would dangle.
+  OptionReader(nlohmann::json&& options, std::string file, std::string path = "options") = delete;
 
   /// A finite number in [lo, hi].
   void read(std::string_view name, double& value, double lo = -std::numeric_limits<double>::max(),
