@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/fem/quadrature.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -60,6 +62,36 @@ TEST(QuadratureRule, PointsInsideAndWeightsPositive) {
         EXPECT_LT(rule.points.cwiseAbs().maxCoeff(), 1.0);
       }
     }
+}
+
+// The tabulated simplex rules are fully symmetric: permuting the barycentric coordinates of
+// the points maps the rule onto itself, weights included. They also use fewer points than
+// the conical product of the same degree ((degree/2 + 1)^d).
+TEST(QuadratureRule, SimplexRulesAreSymmetricAndSmall) {
+  for (auto t : {ElementType::Triangle, ElementType::Tetrahedron}) {
+    const int dim = topological_dim(t);
+    for (int degree = 2; degree <= 8; ++degree) {
+      const auto& rule = quadrature_rule(t, degree);
+      const int conical = static_cast<int>(std::pow(degree / 2 + 1, dim));
+      if (degree >= 4) {
+        EXPECT_LT(rule.n_points(), conical) << name_of(t) << " degree " << degree;
+      }
+      std::vector<int> perm(static_cast<std::size_t>(dim + 1));
+      for (int i = 0; i <= dim; ++i) perm[static_cast<std::size_t>(i)] = i;
+      do {
+        for (int q = 0; q < rule.n_points(); ++q) {
+          Eigen::VectorXd bary(dim + 1);
+          bary << 1 - rule.points.col(q).sum(), rule.points.col(q);
+          Eigen::VectorXd image(dim);
+          for (int k = 0; k < dim; ++k) image(k) = bary(perm[static_cast<std::size_t>(k + 1)]);
+          bool found = false;
+          for (int r = 0; r < rule.n_points() && !found; ++r)
+            found = (rule.points.col(r) - image).norm() < 1e-12 && std::abs(rule.weights(r) - rule.weights(q)) < 1e-14;
+          EXPECT_TRUE(found) << name_of(t) << " degree " << degree << " point " << q;
+        }
+      } while (std::next_permutation(perm.begin(), perm.end()));
+    }
+  }
 }
 
 TEST(QuadratureRule, LinearSimplexRuleIsTheCentroid) {

@@ -19,8 +19,10 @@ struct QuadratureRule {
   int n_points() const { return static_cast<int>(weights.size()); }
 };
 
-/// Shared rule of at least `degree` (Gauss–Legendre products on tensor cells, collapsed
-/// Gauss–Jacobi (Stroud conical) products on simplices; one point for degree ≤ 1).
+/// Shared rule of at least `degree`: Gauss–Legendre products on tensor cells; on simplices
+/// fully symmetric rules with positive weights and interior points for degrees 2–8 where
+/// one is tabulated (src/fem/detail/simplex_rules.inc), otherwise collapsed Gauss–Jacobi
+/// (Stroud conical) products; one point (the centroid) for degree ≤ 1.
 const QuadratureRule& quadrature_rule(ElementType type, int degree);
 
 /// Degree used by default for mesh-quality integrals on an element of `order`: 1 for
