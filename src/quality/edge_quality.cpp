@@ -5,44 +5,39 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/LU>
+
 #include "meshmorph/error.h"
+#include "meshmorph/quality/element_quality.h"
 #include "quality/detail/jet.h"
 
 namespace meshmorph {
 namespace {
 
-// The regular simplex of unit edge: its volume, its edges and the constant C of eq. 3.
+// The regular simplex of unit edge (W = ideal_jacobian, quality/element_quality.h): its
+// edges, its volume and the constant C of eq. 3 that makes its quality 1.
 template <int d>
-struct RegularSimplex;
-
-template <>
-struct RegularSimplex<2> {
-  static double volume() { return std::sqrt(3.0) / 4.0; }
-  static double constant() { return 4.0 * std::sqrt(3.0); }
-  static const std::array<Eigen::Vector2d, 3>& edges() {
-    static const std::array<Eigen::Vector2d, 3> e = make_edges();
-    return e;
-  }
-  static std::array<Eigen::Vector2d, 3> make_edges() {
-    const Eigen::Vector2d v1(1.0, 0.0), v2(0.5, std::sqrt(3.0) / 2.0);
-    return {v1, v2, v2 - v1};
-  }
+struct RegularSimplex {
+  std::array<Eigen::Matrix<double, d, 1>, d * (d + 1) / 2> edges;
+  double volume = 0.0;
+  double constant = 0.0;
 };
 
-template <>
-struct RegularSimplex<3> {
-  static double volume() { return std::sqrt(2.0) / 12.0; }
-  static double constant() { return 36.0 * std::sqrt(2.0); }
-  static const std::array<Eigen::Vector3d, 6>& edges() {
-    static const std::array<Eigen::Vector3d, 6> e = make_edges();
-    return e;
-  }
-  static std::array<Eigen::Vector3d, 6> make_edges() {
-    const Eigen::Vector3d v1(1.0, 0.0, 0.0), v2(0.5, std::sqrt(3.0) / 2.0, 0.0),
-        v3(0.5, std::sqrt(3.0) / 6.0, std::sqrt(2.0 / 3.0));
-    return {v1, v2, v3, v2 - v1, v3 - v1, v3 - v2};
-  }
-};
+template <int d>
+const RegularSimplex<d>& regular_simplex() {
+  static const RegularSimplex<d> simplex = [] {
+    const MatT<d> W = ideal_jacobian(d == 2 ? ElementType::Triangle : ElementType::Tetrahedron);
+    RegularSimplex<d> r;
+    std::size_t k = 0;
+    for (int i = 0; i < d; ++i) r.edges[k++] = W.col(i);  // from corner 0
+    for (int i = 0; i < d; ++i)
+      for (int j = i + 1; j < d; ++j) r.edges[k++] = W.col(j) - W.col(i);
+    r.volume = W.determinant() / (d == 2 ? 2.0 : 6.0);
+    r.constant = d == 2 ? 4.0 * std::sqrt(3.0) : 36.0 * std::sqrt(2.0);
+    return r;
+  }();
+  return simplex;
+}
 
 // Adds lᵈ = s^{d/2}, s = |T e|², to the jet L: ∇s = vec(2 T e eᵀ), ∇²s = 2 (e eᵀ) ⊗ I
 // (vec is column-major), accumulated in place without forming the jet of s.
@@ -78,21 +73,21 @@ EdgeQuality<d>::EdgeQuality(EdgeQualityOptions options) : options_(options) {
 // into sums, and h'/h = 1/r, h''/h − (h'/h)² = 2δ²/(r³h) − 1/r² with r = √(V² + 4δ²).
 template <int d>
 MetricEval<d> EdgeQuality<d>::eval(const MatT<d>& T, Want want) const {
-  using Reg = RegularSimplex<d>;
+  const RegularSimplex<d>& reg = regular_simplex<d>();
   const double delta = options_.delta;
-  const detail::Jet<d> V = detail::affine(detail::determinant(T, want), Reg::volume(), 0.0, want);
+  const detail::Jet<d> V = detail::affine(detail::determinant(T, want), reg.volume, 0.0, want);
   const double r = std::sqrt(V.v * V.v + 4.0 * delta * delta);
   // h = ½(V + r), written without cancellation for V < 0: (r + V)(r − V) = 4δ².
   const double h = V.v >= 0.0 ? 0.5 * (V.v + r) : 2.0 * delta * delta / (r - V.v);
   if (!(h > 0.0)) return detail::infinite_eval<d>();  // δ = 0 and V ≤ 0: q* = 0, F = +∞
 
   detail::Jet<d> L;
-  for (const auto& e : Reg::edges()) add_edge_power<d>(L, T, e, want);
+  for (const auto& e : reg.edges) add_edge_power<d>(L, T, e, want);
   if (!(L.v > 0.0)) return detail::infinite_eval<d>();  // T = 0: every edge collapsed
 
   const detail::Jet<d> log_h = detail::compose(V, std::log(h), 1.0 / r, 2.0 * delta * delta / (r * r * r * h) - 1.0 / (r * r), want);
   const detail::Jet<d> log_L = detail::compose(L, std::log(L.v), 1.0 / L.v, -1.0 / (L.v * L.v), want);
-  const detail::Jet<d> g = detail::affine(detail::combine(1.0, log_h, -1.0, log_L, want), 1.0, std::log(Reg::constant()), want);
+  const detail::Jet<d> g = detail::affine(detail::combine(1.0, log_h, -1.0, log_L, want), 1.0, std::log(reg.constant), want);
   const double n = options_.n;
   const double F = std::exp(n * g.v);
   return detail::to_eval(detail::compose(g, F, n * F, n * n * F, want));
