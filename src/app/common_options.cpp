@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <omp.h>
-#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -14,6 +14,8 @@
 namespace meshmorph {
 
 void add_common_options(CLI::App& app, CommonOptions& options) {
+  // Common options may also follow the subcommand: `meshmorph morph case.json --quiet`.
+  app.fallthrough();
   app.set_version_flag("--version", std::string("meshmorph ") + meshmorph_version());
   app.add_option("--threads", options.threads, "Number of threads (default: all cores)")
       ->check(CLI::PositiveNumber)
@@ -28,11 +30,14 @@ void apply_common_options(const CommonOptions& options) {
     set_log_sink({});
     return;
   }
-  // Progress lines only where a person watches; detail only on request.
-  const LogLevel max_level = options.verbose ? LogLevel::Detail
-                                             : (isatty(STDERR_FILENO) ? LogLevel::Progress : LogLevel::Info);
+  // Progress lines once a run has taken more than a second (quick runs stay silent);
+  // detail only on request.
+  const LogLevel max_level = options.verbose ? LogLevel::Detail : LogLevel::Progress;
+  const auto start = std::chrono::steady_clock::now();
   set_log_sink(
-      [](LogLevel level, std::string_view message) {
+      [verbose = options.verbose, start](LogLevel level, std::string_view message) {
+        if (level == LogLevel::Progress && !verbose && std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
+          return;
         const char* prefix = level == LogLevel::Error ? "meshmorph: error: "
                              : level == LogLevel::Warning ? "meshmorph: warning: "
                                                           : "meshmorph: ";

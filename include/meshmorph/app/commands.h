@@ -34,6 +34,9 @@ void apply_common_options(const CommonOptions& options);
 void add_quality_command(CLI::App& app, Command& run);
 /// `meshmorph convert IN OUT [--order P] [--binary] [--msh22]`; sets `run` when chosen.
 void add_convert_command(CLI::App& app, Command& run);
+/// `meshmorph morph CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1); `threads` is read when
+/// the command runs (the common --threads option).
+void add_morph_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
 void add_check_command(CLI::App& app, Command& run);
 

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/mesh/topology.h"
+
+namespace meshmorph {
+
+/// The "boundary" entries of a case resolved on its mesh (DESIGN §3.2): a role per node and
+/// the prescribed motion as a path x(t), t ∈ [0, 1], for time series (`steps`).
+///
+/// Roles: nodes of a moving group (translate, rotate, scale, project, displace) are
+/// Prescribed; nodes of a `slide` group not in a moving group slide on the group's plane;
+/// every other boundary node (listed as `fixed` or not listed) is Fixed; interior nodes are
+/// Free, also when a listed group contains them. A node in two moving groups must get the same
+/// target from both (within 1e-12 of the mesh size), else InputError.
+/// Paths: translations and displacements linear in t, rotations by t·angle, scaling by
+/// 1 + t(factor − 1), projections along the straight segment to the closest point.
+class BoundaryMotion {
+ public:
+  /// Throws InputError naming the case file and key path when a projection finds no closest
+  /// point, a slide group is not planar, or two groups prescribe different targets.
+  BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topology& topology);
+
+  /// Roles, final targets (t = 1) and slide normals.
+  const BoundaryTargets& targets() const { return targets_; }
+  /// Node positions at fraction t of the motion (d × n; input positions where not Prescribed).
+  Eigen::MatrixXd at(double t) const;
+
+ private:
+  const Mesh* mesh_;
+  std::vector<Motion> motions_;             // per boundary entry
+  std::vector<std::int32_t> owner_;         // per node: the entry that prescribes it, or −1
+  Eigen::MatrixXd end_;                     // d × n: final targets of prescribed nodes
+  BoundaryTargets targets_;
+};
+
+}  // namespace meshmorph

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/mesh/topology.h"
+#include "meshmorph/solve/linear_solver.h"
+
+namespace meshmorph {
+
+/// Parameters of the augmented-Lagrangian morph (paper 000 Algorithms 1 and 2). Defaults are
+/// the paper's where it gives them; docs/morph.md explains the ones it leaves open.
+struct MorphOptions {
+  /// ε*: the run has converged when every prescribed node is within tolerance·L of its target
+  /// (L = diagonal of the input mesh's bounding box) ...
+  double tolerance = 1e-9;
+  /// ... and the last Newton solve met δ* (½gᵀH⁻¹g ≤ δ*·E_ref, E_ref = Σ_e |e|: the energy of
+  /// the identity map).
+  double gradient_tolerance = 1e-12;
+  double eps0 = 0.1;       ///< ε₀ relative to the constraint norm at the start of a step
+  double delta0 = 1e-3;    ///< δ₀, relative to E_ref like δ*
+  /// μ₀ = penalty0 · (mean diagonal of the distortion Hessian at the constrained DOFs) /
+  /// (mean diagonal of the boundary mass): the penalty starts `penalty0` times stiffer than
+  /// the mesh next to it, whatever the units and the grading.
+  double penalty0 = 10.0;
+  double m0 = 10.0;        ///< m₀ of Algorithm 1
+  double m_factor = 100.0; ///< m ← m_factor·m when the constraint did not decrease enough
+  bool adaptive_weights = true;  ///< Algorithm 2; false keeps ω = 1 (paper §4.2 comparison)
+  double alpha = 3.0;      ///< eq. 10
+  double beta = 1.25;      ///< eq. 11
+  int max_outer = 40;      ///< augmented-Lagrangian iterations per step
+  int max_weight_updates = 30;  ///< nonlinear solves per augmented-Lagrangian iteration
+  int max_newton = 200;    ///< Newton steps per nonlinear solve
+  bool exact_first = true; ///< NewtonOptions::exact_first (DESIGN §6)
+  LinearSolverKind solver = LinearSolverKind::Auto;
+  int threads = 0;
+};
+
+/// One augmented-Lagrangian iteration, for the report's history.
+struct MorphIteration {
+  int step = 1;
+  int outer = 0;
+  double constraint_norm = 0.0;     ///< ‖T(φ) − g‖ in the 1/h inner product, normalized (a length)
+  double boundary_error_max = 0.0;  ///< max nodal distance from the targets
+  double min_quality = 0.0;         ///< min_e 1/η_e (eq. 9) at the quadrature points
+  double mu = 0.0;
+  long long nonlinear = 0, newton = 0, linear = 0;  ///< cumulative counts
+};
+
+struct MorphResult {
+  bool converged = false;
+  std::string message;
+  long long outer = 0, nonlinear = 0, newton = 0, linear = 0, krylov = 0;
+  std::vector<MorphIteration> history;
+};
+
+/// Morphs a mesh by the augmented-Lagrangian method of paper 000: minimises
+/// Σ_e ω_e ∫ η₀(A W⁻¹)² (W the input element's Jacobian) plus the boundary term of
+/// BoundaryPenalty, raising μ and updating λ (Algorithm 1) and the weights ω_e (Algorithm 2)
+/// until every prescribed node reaches its target. Fixed nodes are not unknowns.
+///
+/// One Morpher serves a whole time series: λ, μ and the weights are carried from one solve()
+/// to the next (paper 000 §5.5), and quality is always measured against the input mesh.
+class Morpher {
+ public:
+  /// `input` (its coordinates are the distortion targets), `topology` and `bc` must outlive
+  /// the Morpher. Throws InputError when the input mesh has an inverted element.
+  Morpher(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options);
+  ~Morpher();
+  Morpher(const Morpher&) = delete;
+  Morpher& operator=(const Morpher&) = delete;
+
+  /// Moves `x` (dim × n_nodes, a valid mesh; the input coordinates for the first step) towards
+  /// `target` (dim × n_nodes, read at Prescribed nodes; Slide nodes keep their plane through
+  /// bc.target). `x` is always a valid mesh on return, also when the run does not converge.
+  MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step = 1);
+
+  struct Impl;  ///< the implementation for one dimension (src/methods/morph.cpp)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshmorph

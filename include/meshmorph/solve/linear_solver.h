@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace meshmorph {
+
+/// Which backend solves the SPD systems of Newton steps and baselines.
+enum class LinearSolverKind {
+  Auto,       ///< Cholesky below a size threshold (and in 2D), Iterative above it in 3D
+  Cholesky,   ///< CHOLMOD supernodal LLᵀ; symbolic analysis reused while the pattern is unchanged
+  Iterative,  ///< conjugate gradients preconditioned by smoothed-aggregation algebraic multigrid
+};
+
+struct LinearSolverOptions {
+  LinearSolverKind kind = LinearSolverKind::Auto;
+  /// Unknowns per node (the d of d×d node blocks); the iterative backend aggregates whole
+  /// nodes and uses the d constant vectors per component as near-null space.
+  int block_size = 1;
+  /// Spatial dimension of the problem (Auto's choice depends on it).
+  int dim = 2;
+  /// Default relative residual tolerance ‖b − Ax‖ ≤ rtol·‖b‖ of the iterative backend.
+  double rtol = 1e-9;
+  int max_iterations = 2000;
+  int threads = 0;  ///< OpenMP threads; 0 = the OpenMP default
+};
+
+/// What one solve did.
+struct LinearSolveStats {
+  bool ok = false;           ///< false: not positive definite, or no convergence
+  int iterations = 0;        ///< CG iterations (0 for a direct solve)
+  double relative_residual = 0.0;
+  std::string message;       ///< why it failed, empty when ok
+};
+
+/// Solves A x = b for sparse symmetric positive definite A stored with both triangles
+/// (column-major, the pattern of EnergyAssembler). One object is kept across the Newton steps
+/// of a run: the symbolic work (ordering, analysis, aggregation hierarchy's structure where
+/// possible) is redone only when the pattern changes (other size or nnz or index arrays).
+/// The iterative backend reads A again in solve(): A must stay alive and unchanged between
+/// factorize() and the solves with it. The direct backend reports relative_residual = 0
+/// (not computed). With block_size > 1 the unknowns are taken as consecutive blocks of
+/// block_size per node (n must be a multiple of it, else the nodes are single unknowns).
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// Numeric set-up for the values of `A`. Returns false when A is found not to be positive
+  /// definite (a Cholesky pivot ≤ 0); the object then stays usable for another factorize().
+  virtual bool factorize(const Eigen::SparseMatrix<double>& A) = 0;
+  /// Solves with the last factorized matrix; `x` is the initial guess for the iterative
+  /// backend (resized and zeroed when its size is wrong) and the solution on return.
+  /// `rtol` ≤ 0 means the options' rtol. Iterative: stops with ok = false when it meets
+  /// negative curvature (A not SPD) or reaches max_iterations.
+  virtual LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) = 0;
+  /// "cholmod" or "cg-amg".
+  virtual std::string name() const = 0;
+};
+
+/// The backend for a system of `n` unknowns (Auto resolved here).
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, std::size_t n);
+
+/// Auto's choice for n unknowns in `dim` dimensions.
+LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n);
+
+}  // namespace meshmorph

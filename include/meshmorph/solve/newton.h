@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <string>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/assembler.h"
+#include "meshmorph/solve/linear_solver.h"
+
+namespace meshmorph {
+
+/// An objective minimised by newton(): it owns the current iterate x (the free DOFs of a
+/// DofMap) and evaluates the energy there and at trial points x + α p.
+class NewtonProblem {
+ public:
+  virtual ~NewtonProblem() = default;
+  /// Value, gradient and Hessian (in `mode`) at the current iterate.
+  virtual void evaluate(HessianMode mode, Assembly& out) = 0;
+  /// Energy at x + α p; +∞ where it is not defined (an inverted element).
+  virtual double trial_value(const Eigen::VectorXd& p, double alpha) = 0;
+  /// Whether x + α p may be accepted: a check beyond the energy's own barrier (e.g. the
+  /// dense validity test of curved elements), run only for steps that pass Armijo.
+  virtual bool admissible(const Eigen::VectorXd& /*p*/, double /*alpha*/) { return true; }
+  /// Moves the iterate to x + α p.
+  virtual void accept(const Eigen::VectorXd& p, double alpha) = 0;
+};
+
+struct NewtonOptions {
+  /// Stop when the predicted decrease ½ gᵀH⁻¹g (half the squared Newton decrement: the
+  /// residual in the norm of the Newton system) is ≤ this, in the energy's units.
+  double decrement_tolerance = 1e-12;
+  int max_iterations = 100;
+  double armijo = 1e-4;      ///< c of the Armijo rule (paper 000: 1e-4)
+  double backtrack = 0.5;    ///< step reduction per rejected trial
+  double min_step = 1e-12;   ///< smallest α tried before giving up
+  /// Step with the exact Hessian H, modified where it is not positive definite to
+  /// H + τ|diag H| with the smallest τ ∈ {0, 1e-6·4^k} ≤ max_shift that makes it so (Nocedal–
+  /// Wright §3.4; τ starts near the last one that worked): quadratic convergence near the
+  /// solution, where projected-Hessian Newton converges only linearly (DESIGN §6). Otherwise,
+  /// or when false, the step of the SPD-projected Hessian.
+  bool exact_first = true;
+  double max_shift = 1.0;
+  double linear_rtol = 1e-8;  ///< relative residual of iterative linear solves
+};
+
+struct NewtonStats {
+  bool converged = false;     ///< the decrement test passed
+  int iterations = 0;         ///< accepted Newton steps
+  int linear_solves = 0;
+  long long krylov_iterations = 0;
+  double value = 0.0;         ///< energy at the final iterate
+  double decrement = 0.0;     ///< ½ gᵀH⁻¹g at the last check
+  std::string message;        ///< why it stopped without converging
+};
+
+/// Damped Newton with backtracking Armijo line search: never accepts a trial point whose
+/// energy is +∞ or that is not admissible. Starts from the problem's current iterate.
+NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options);
+
+}  // namespace meshmorph

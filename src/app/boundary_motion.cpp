@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/app/boundary_motion.h"
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/geometry/level_set_function.h"
+
+namespace meshmorph {
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+bool moves(const Motion& m) {
+  return !std::holds_alternative<FixedMotion>(m) && !std::holds_alternative<SlideMotion>(m);
+}
+
+Eigen::MatrixXd rotation(const RotateMotion& r, int dim, double t) {
+  const double angle = t * r.degrees * M_PI / 180.0;
+  if (dim == 2) return Eigen::Rotation2D<double>(angle).toRotationMatrix();
+  return Eigen::AngleAxis<double>(angle, Eigen::Vector3d(r.axis->normalized())).toRotationMatrix();
+}
+
+}  // namespace
+
+BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topology& topology) : mesh_(&mesh) {
+  const int d = mesh.dim;
+  const auto n = static_cast<Eigen::Index>(mesh.n_nodes());
+  const std::string file = c.file.string();
+  const double length = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
+  std::vector<std::uint8_t> on_boundary(mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topology)) on_boundary[node] = 1;
+
+  targets_.role.assign(mesh.n_nodes(), NodeRole::Free);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (on_boundary[i]) targets_.role[i] = NodeRole::Fixed;
+  targets_.target = mesh.x;
+  targets_.normal = Eigen::MatrixXd::Zero(d, n);
+  end_ = mesh.x;
+  owner_.assign(mesh.n_nodes(), -1);
+  const std::vector<std::int32_t> index_of_tag = mesh.node_index_of_tag();
+
+  for (std::size_t e = 0; e < c.boundary.size(); ++e) {
+    const BoundaryCondition& bc = c.boundary[e];
+    motions_.push_back(bc.motion);
+    const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(bc.group));
+    if (!moves(bc.motion)) continue;
+    // The final position of each boundary node of the group.
+    auto place = [&](std::int32_t node, const Eigen::VectorXd& target) {
+      if (owner_[node] >= 0) {
+        if ((end_.col(node) - target).norm() > 1e-12 * length)
+          throw InputError(file + ": " + bc.key_path + ": node " + std::to_string(mesh.node_tags[node]) +
+                           " is also moved by " + c.boundary[owner_[node]].key_path + " to a different target");
+        return;
+      }
+      owner_[node] = static_cast<std::int32_t>(e);
+      end_.col(node) = target;
+    };
+    std::visit(Overloaded{
+                   [&](const TranslateMotion& m) {
+                     for (std::int32_t node : nodes)
+                       if (on_boundary[node]) place(node, mesh.x.col(node) + m.displacement);
+                   },
+                   [&](const RotateMotion& m) {
+                     const Eigen::MatrixXd R = rotation(m, d, 1.0);
+                     for (std::int32_t node : nodes)
+                       if (on_boundary[node]) place(node, m.center + R * (mesh.x.col(node) - m.center));
+                   },
+                   [&](const ScaleMotion& m) {
+                     for (std::int32_t node : nodes)
+                       if (on_boundary[node]) place(node, m.center + m.factor * (mesh.x.col(node) - m.center));
+                   },
+                   [&](const ProjectMotion& m) {
+                     LevelSetOptions lo;
+                     lo.source = file;
+                     lo.length_scale = length;
+                     const LevelSetFunction ls(m.target, d, lo);
+                     for (std::int32_t node : nodes) {
+                       if (!on_boundary[node]) continue;
+                       const std::optional<Eigen::VectorXd> p = ls.closest_point(mesh.x.col(node));
+                       if (!p)
+                         throw InputError(file + ": " + bc.key_path + ".project: node " + std::to_string(mesh.node_tags[node]) +
+                                          " cannot reach the level set (no closest point found from it)");
+                       place(node, *p);
+                     }
+                   },
+                   [&](const DisplaceMotion& m) {
+                     std::vector<std::uint8_t> given(mesh.n_nodes(), 0);
+                     for (std::size_t k = 0; k < m.table.node_tags.size(); ++k) {
+                       const std::int32_t node = index_of_tag[static_cast<std::size_t>(m.table.node_tags[k])];
+                       given[node] = 1;
+                       if (on_boundary[node]) place(node, mesh.x.col(node) + m.table.displacement.col(static_cast<Eigen::Index>(k)));
+                     }
+                     for (std::int32_t node : nodes)
+                       if (on_boundary[node] && !given[node])
+                         throw InputError(file + ": " + bc.key_path + ".displace: " + m.table.file.string() +
+                                          " has no row for node " + std::to_string(mesh.node_tags[node]) + " of group \"" +
+                                          bc.group + "\"");
+                   },
+                   [](const auto&) {},
+               },
+               bc.motion);
+  }
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (owner_[i] >= 0) targets_.role[i] = NodeRole::Prescribed;
+  targets_.target = end_;
+
+  // Slide groups: the plane through the group's nodes (least squares), which must fit them.
+  for (const BoundaryCondition& bc : c.boundary) {
+    if (!std::holds_alternative<SlideMotion>(bc.motion)) continue;
+    const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(bc.group));
+    Eigen::VectorXd centre = Eigen::VectorXd::Zero(d);
+    for (std::int32_t node : nodes) centre += mesh.x.col(node);
+    centre /= static_cast<double>(nodes.size());
+    Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(d, d);
+    for (std::int32_t node : nodes) cov += (mesh.x.col(node) - centre) * (mesh.x.col(node) - centre).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+    const Eigen::VectorXd normal = eig.eigenvectors().col(0);
+    for (std::int32_t node : nodes)
+      if (std::abs(normal.dot(mesh.x.col(node) - centre)) > 1e-9 * length)
+        throw InputError(file + ": " + bc.key_path + ".slide: group \"" + bc.group +
+                         "\" is not planar (node " + std::to_string(mesh.node_tags[node]) + " is off its plane)");
+    for (std::int32_t node : nodes)
+      if (on_boundary[node] && targets_.role[node] == NodeRole::Fixed) {
+        targets_.role[node] = NodeRole::Slide;
+        targets_.normal.col(node) = normal;
+      }
+  }
+}
+
+Eigen::MatrixXd BoundaryMotion::at(double t) const {
+  const Mesh& mesh = *mesh_;
+  Eigen::MatrixXd x = mesh.x;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    if (owner_[i] < 0) continue;
+    const Motion& motion = motions_[static_cast<std::size_t>(owner_[i])];
+    const Eigen::VectorXd x0 = mesh.x.col(static_cast<Eigen::Index>(i));
+    if (const auto* r = std::get_if<RotateMotion>(&motion))
+      x.col(static_cast<Eigen::Index>(i)) = r->center + rotation(*r, mesh.dim, t) * (x0 - r->center);
+    else
+      // Translate, displace and project move along straight lines, scale too (1 + t(f − 1)).
+      x.col(static_cast<Eigen::Index>(i)) = x0 + t * (end_.col(static_cast<Eigen::Index>(i)) - x0);
+  }
+  return x;
+}
+
+}  // namespace meshmorph

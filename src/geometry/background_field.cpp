@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+// A nodal field on a background mesh (paper 003 §3.1). Points are located through a
+// uniform bucket grid over the cells' bounding boxes (about one cell per bucket); inside a
+// candidate cell the reference coordinates ξ come from Newton on x(ξ) = x (exact in one
+// step for straight simplices). A point in no cell takes the cell with the nearest
+// centroid (a linear scan) and its polynomial extended beyond the cell.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include <Eigen/Dense>
+
+#include "geometry/detail/level_set_node.h"
+#include "meshmorph/error.h"
+#include "meshmorph/fem/lagrange_basis.h"
+
+namespace meshmorph::detail {
+
+namespace {
+
+constexpr double kInsideTolerance = 1e-10;
+
+struct CellRef {
+  const CellBlock* block;
+  std::size_t index;
+};
+
+class BackgroundField final : public LevelSetNode {
+ public:
+  BackgroundField(Mesh mesh, Eigen::VectorXd values) : mesh_(std::move(mesh)), values_(std::move(values)) {
+    for (const auto& b : mesh_.cells)
+      if (topological_dim(b.type) == mesh_.dim)
+        for (std::size_t c = 0; c < b.n_cells(); ++c) cells_.push_back({&b, c});
+    build_grid();
+  }
+
+  double value(const Vec& x) const override {
+    Vec g;
+    return evaluate(x, g, false);
+  }
+  double value_gradient(const Vec& x, Vec& g) const override { return evaluate(x, g, true); }
+
+ private:
+  Eigen::MatrixXd coordinates(const CellRef& c) const {
+    const int n = c.block->n_nodes_per_cell();
+    Eigen::MatrixXd X(mesh_.dim, n);
+    const std::int32_t* nodes = c.block->cell(c.index);
+    for (int a = 0; a < n; ++a) X.col(a) = mesh_.x.col(nodes[a]);
+    return X;
+  }
+
+  // ξ with x(ξ) = x (Newton from the reference centroid), and how far ξ lies outside the
+  // reference element (0 inside).
+  double invert(const CellRef& c, const Vec& x, Vec& xi) const {
+    const LagrangeBasis& basis = lagrange_basis(c.block->type, c.block->order);
+    const Eigen::MatrixXd X = coordinates(c);
+    const auto& corners = reference_element(c.block->type, 1).nodes;
+    xi = corners.rowwise().mean();
+    for (int it = 0; it < 30; ++it) {
+      const Vec r = X * basis.values(xi) - x;
+      const Eigen::MatrixXd J = X * basis.gradients(xi);
+      const Vec d = J.partialPivLu().solve(r);
+      if (!d.allFinite()) return std::numeric_limits<double>::infinity();
+      xi -= d;
+      if (d.norm() <= 1e-14 * (1 + xi.norm())) break;
+    }
+    if (is_simplex(c.block->type)) return std::max({0.0, -xi.minCoeff(), xi.sum() - 1});
+    return std::max(0.0, xi.cwiseAbs().maxCoeff() - 1);
+  }
+
+  double evaluate(const Vec& x, Vec& g, bool want_gradient) const {
+    Vec xi;
+    const CellRef c = locate(x, xi);
+    const LagrangeBasis& basis = lagrange_basis(c.block->type, c.block->order);
+    const int n = c.block->n_nodes_per_cell();
+    Vec phi(n);
+    const std::int32_t* nodes = c.block->cell(c.index);
+    for (int a = 0; a < n; ++a) phi(a) = values_(nodes[a]);
+    if (want_gradient) {
+      const Eigen::MatrixXd G = basis.gradients(xi);
+      const Eigen::MatrixXd J = coordinates(c) * G;
+      g = J.transpose().partialPivLu().solve(G.transpose() * phi);
+    }
+    return basis.values(xi).dot(phi);
+  }
+
+  CellRef locate(const Vec& x, Vec& xi) const {
+    double best = std::numeric_limits<double>::infinity();
+    CellRef found = cells_.front();
+    if (const auto b = bucket_of(x)) {
+      for (std::int32_t k = bucket_start_[*b]; k < bucket_start_[*b + 1]; ++k) {
+        const std::size_t i = static_cast<std::size_t>(bucket_cells_[static_cast<std::size_t>(k)]);
+        if ((x.array() < lo_.col(i).array()).any() || (x.array() > hi_.col(i).array()).any()) continue;
+        Vec xi_c;
+        const double outside = invert(cells_[i], x, xi_c);
+        if (outside < best) best = outside, found = cells_[i], xi = xi_c;
+        if (outside <= kInsideTolerance) return found;
+      }
+    }
+    // Outside every cell: extrapolate from the cell with the nearest centroid.
+    Eigen::Index nearest = 0;
+    (centroid_.colwise() - x).colwise().squaredNorm().minCoeff(&nearest);
+    found = cells_[static_cast<std::size_t>(nearest)];
+    invert(found, x, xi);
+    return found;
+  }
+
+  std::optional<std::size_t> bucket_of(const Vec& x) const {
+    std::size_t index = 0, stride = 1;
+    for (int k = 0; k < mesh_.dim; ++k) {
+      const double u = (x(k) - origin_(k)) / cell_size_(k);
+      if (!(u >= 0) || u >= static_cast<double>(resolution_[k])) return std::nullopt;
+      index += static_cast<std::size_t>(u) * stride;
+      stride *= resolution_[k];
+    }
+    return index;
+  }
+
+  void build_grid() {
+    const int d = mesh_.dim;
+    const auto n = static_cast<Eigen::Index>(cells_.size());
+    lo_.resize(d, n);
+    hi_.resize(d, n);
+    centroid_.resize(d, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::MatrixXd X = coordinates(cells_[static_cast<std::size_t>(i)]);
+      // Widen by 10%: the nodes' box may miss the bulge of a curved high-order cell.
+      const Vec pad = 0.1 * (X.rowwise().maxCoeff() - X.rowwise().minCoeff());
+      lo_.col(i) = X.rowwise().minCoeff() - pad;
+      hi_.col(i) = X.rowwise().maxCoeff() + pad;
+      centroid_.col(i) = X.rowwise().mean();
+    }
+    origin_ = lo_.rowwise().minCoeff();
+    const Vec extent = (hi_.rowwise().maxCoeff() - origin_).cwiseMax(std::numeric_limits<double>::min());
+    const double per_axis = std::pow(static_cast<double>(n), 1.0 / d);
+    const double mean_extent = std::pow(extent.prod(), 1.0 / d);
+    resolution_.assign(static_cast<std::size_t>(d), 1);
+    cell_size_.resize(d);
+    for (int k = 0; k < d; ++k) {
+      resolution_[k] = static_cast<std::size_t>(std::clamp(std::round(per_axis * extent(k) / mean_extent), 1.0, 1024.0));
+      cell_size_(k) = extent(k) / static_cast<double>(resolution_[k]) * (1 + 1e-12);
+    }
+    // Counting sort of (bucket, cell) pairs into CSR.
+    std::size_t n_buckets = 1;
+    for (auto r : resolution_) n_buckets *= r;
+    std::vector<std::vector<std::int32_t>> lists(n_buckets);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      std::vector<std::size_t> a(static_cast<std::size_t>(d)), b(static_cast<std::size_t>(d));
+      for (int k = 0; k < d; ++k) {
+        const double r = static_cast<double>(resolution_[k] - 1);
+        a[k] = static_cast<std::size_t>(std::clamp(std::floor((lo_(k, i) - origin_(k)) / cell_size_(k)), 0.0, r));
+        b[k] = static_cast<std::size_t>(std::clamp(std::floor((hi_(k, i) - origin_(k)) / cell_size_(k)), 0.0, r));
+      }
+      for (std::size_t u = a[0]; u <= b[0]; ++u)
+        for (std::size_t v = a[1]; v <= b[1]; ++v)
+          for (std::size_t w = d > 2 ? a[2] : 0; w <= (d > 2 ? b[2] : 0); ++w)
+            lists[u + resolution_[0] * (v + resolution_[1] * w)].push_back(static_cast<std::int32_t>(i));
+    }
+    bucket_start_.assign(n_buckets + 1, 0);
+    for (std::size_t b = 0; b < n_buckets; ++b)
+      bucket_start_[b + 1] = bucket_start_[b] + static_cast<std::int32_t>(lists[b].size());
+    bucket_cells_.reserve(static_cast<std::size_t>(bucket_start_.back()));
+    for (const auto& l : lists) bucket_cells_.insert(bucket_cells_.end(), l.begin(), l.end());
+  }
+
+  Mesh mesh_;
+  Eigen::VectorXd values_;
+  std::vector<CellRef> cells_;  // point into mesh_.cells
+  Eigen::MatrixXd lo_, hi_, centroid_;  // d × n_cells
+  Vec origin_, cell_size_;
+  std::vector<std::size_t> resolution_;
+  std::vector<std::int32_t> bucket_start_, bucket_cells_;
+};
+
+}  // namespace
+
+NodePtr make_background_field(Mesh mesh, Eigen::VectorXd values, const std::string& where) {
+  if (static_cast<std::size_t>(values.size()) != mesh.n_nodes())
+    throw InputError(where + ": expected one field value per node (" + std::to_string(mesh.n_nodes()) +
+                     "), found " + std::to_string(values.size()));
+  if (!values.allFinite()) throw InputError(where + ": the nodal field has non-finite values");
+  bool has_cells = false;
+  for (const auto& b : mesh.cells) has_cells |= topological_dim(b.type) == mesh.dim && b.n_cells() > 0;
+  if (!has_cells) throw InputError(where + ": the background mesh has no cells");
+  return std::make_shared<BackgroundField>(std::move(mesh), std::move(values));
+}
+
+}  // namespace meshmorph::detail

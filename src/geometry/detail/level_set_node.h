@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/geometry/level_set.h"
+#include "meshmorph/mesh/mesh.h"
+
+namespace meshmorph::detail {
+
+using Vec = Eigen::VectorXd;
+
+/// One node of a compiled level-set tree. Immutable; safe to evaluate from several threads.
+class LevelSetNode {
+ public:
+  virtual ~LevelSetNode() = default;
+  virtual double value(const Vec& x) const = 0;
+  /// σ(x), and ∇σ(x) in `g` (resized by the callee).
+  virtual double value_gradient(const Vec& x, Vec& g) const = 0;
+  /// Closest point of the zero set. Default: the general iteration (closest_point.cpp).
+  virtual std::optional<Vec> closest_point(const Vec& x) const;
+  /// The smooth pieces whose zero sets make up this one's (itself, for a leaf).
+  virtual void collect_leaves(std::vector<const LevelSetNode*>& leaves) const { leaves.push_back(this); }
+};
+
+using NodePtr = std::shared_ptr<const LevelSetNode>;
+
+/// Error context of a compile: "source: key_path.kind" prefixes every message.
+struct CompileContext {
+  std::string source;
+  double length_scale = 1.0;
+  int dim = 0;
+};
+
+/// Compiles a tree (level_set_function.cpp dispatches here by kind).
+NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx);
+NodePtr make_sphere(const SphereLevelSet& s);
+NodePtr make_cylinder(const CylinderLevelSet& s);
+NodePtr make_plane(const PlaneLevelSet& s);
+NodePtr make_box(const BoxLevelSet& s);
+NodePtr make_torus(const TorusLevelSet& s);
+/// Throws InputError(`where` + ": invalid expression ...") when it does not compile.
+NodePtr make_expression(const std::string& expression, double length_scale, const std::string& where);
+enum class CsgOp { Union, Intersection, Difference };
+NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands);
+/// Throws InputError(`where` + ": ...") for a mesh without cells or a size mismatch.
+NodePtr make_background_field(Mesh mesh, Eigen::VectorXd values, const std::string& where);
+
+/// Closest point of {σ_i = 0 for every i} to x0, starting from `start`: Gauss–Newton
+/// projection onto the constraints alternated with a damped tangential correction until
+/// x0 − p lies in the span of the ∇σ_i(p). nullopt on failure (closest_point.cpp).
+std::optional<Vec> constrained_closest_point(const Vec& x0, const std::vector<const LevelSetNode*>& constraints,
+                                             const Vec& start);
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/assembler.h"
+#include "meshmorph/energy/boundary_penalty.h"
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/solve/newton.h"
+
+namespace meshmorph {
+
+/// The augmented-Lagrangian functional of paper 000 (eq. 6–7) as a NewtonProblem: the
+/// weighted distortion Σ_e ω_e ∫ η₀² against the input mesh plus the boundary term, over the
+/// nodes that are not Fixed. Holds the current coordinates.
+template <int d>
+class MorphProblem final : public NewtonProblem {
+ public:
+  MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads);
+
+  std::size_t n_free() const { return dofs_.n_free(); }
+  void set_state(const Eigen::MatrixXd& x) { x_ = x; }
+  const Eigen::MatrixXd& state() const { return x_; }
+  BoundaryPenalty<d>& penalty() { return *penalty_; }
+  /// The penalty's targets from a full d × n target (Prescribed) and bc.target (Slide).
+  Eigen::MatrixXd gather_targets(const Eigen::MatrixXd& target) const;
+
+  /// Σ_e |e| over the input cells: the energy of the identity map with ω = 1.
+  double reference_energy() const { return reference_energy_; }
+  /// Diagonal of the input mesh's bounding box.
+  double length_scale() const { return length_scale_; }
+  /// Mean diagonal of the projected distortion Hessian at the free DOFs of the constrained
+  /// nodes, at the current state (for μ₀).
+  double distortion_stiffness();
+  /// Algorithm 2, lines 4–8: ω_e ← min(β ω_e, max(ω_e, e^{α(η_e − 1)})). Returns whether any
+  /// weight changed.
+  bool update_weights(double alpha, double beta);
+  /// min_e 1/η_e at the current state (eq. 9 on the quadrature points of each cell).
+  double min_quality();
+
+  void evaluate(HessianMode mode, Assembly& out) override;
+  double trial_value(const Eigen::VectorXd& p, double alpha) override;
+  bool admissible(const Eigen::VectorXd& p, double alpha) override;
+  void accept(const Eigen::VectorXd& p, double alpha) override;
+
+ private:
+  std::vector<double> distortions();  // η_e per cell at the current state
+  const Mesh* mesh_;
+  const BoundaryTargets* bc_;
+  int threads_;
+  TargetField<d> targets_;
+  DofMap dofs_;
+  std::unique_ptr<EnergyAssembler<d>> assembler_;
+  std::unique_ptr<Metric<d>> metric_;
+  BoundaryMass mass_;
+  std::unique_ptr<BoundaryPenalty<d>> penalty_;
+  std::vector<std::int32_t> penalty_slot_;  // node → index in the penalty, -1
+  std::vector<double> weights_, volumes_;
+  double reference_energy_ = 0.0, length_scale_ = 1.0;
+  bool dense_validity_ = false;  // curved or tensor cells: check validity beyond the quadrature points
+  Eigen::MatrixXd x_, trial_;
+};
+
+}  // namespace meshmorph

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/morph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "meshmorph/energy/boundary_penalty.h"
+#include "meshmorph/error.h"
+#include "meshmorph/log.h"
+#include "meshmorph/quality/metric_registry.h"
+#include "meshmorph/solve/newton.h"
+#include "methods/detail/morph_problem.h"
+
+namespace meshmorph {
+
+struct Morpher::Impl {
+  virtual ~Impl() = default;
+  virtual MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) = 0;
+};
+
+namespace {
+
+template <class... Args>
+std::string format(const char* fmt, Args... args) {
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer, fmt, args...);
+  return buffer;
+}
+
+template <int d>
+class MorphImpl final : public Morpher::Impl {
+ public:
+  MorphImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options)
+      : options_(options), problem_(input, topology, bc, options.threads) {
+    LinearSolverOptions lo;
+    lo.kind = options.solver;
+    lo.block_size = d;
+    lo.dim = d;
+    lo.threads = options.threads;
+    solver_ = make_linear_solver(lo, problem_.n_free());
+  }
+
+  MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) override {
+    MorphResult result;
+    MorphProblem<d>& P = problem_;
+    BoundaryPenalty<d>& penalty = P.penalty();
+    P.set_state(x);
+    penalty.set_target(P.gather_targets(target));
+    if (penalty.size() == 0) {
+      result.converged = true;
+      result.message = "no node has a prescribed motion";
+      return result;
+    }
+    const double tol_max = options_.tolerance * P.length_scale();
+    const double delta_star = options_.gradient_tolerance * P.reference_energy();
+    if (!started_) {
+      mu0_ = options_.penalty0 * P.distortion_stiffness() / penalty.mean_diagonal();
+      m_ = options_.m0;
+      penalty.mu = mu0_;
+      started_ = true;
+    }
+    // ε₀, δ₀ restart with each step (relative to how far this step has to go); μ, m, λ and
+    // the weights carry over (paper 000 §5.5).
+    const double c_start = penalty.constraint_norm(P.state());
+    double eps = options_.eps0 * c_start;
+    double delta = std::max(options_.delta0 * P.reference_energy(), delta_star);
+
+    NewtonOptions no;
+    no.max_iterations = options_.max_newton;
+    no.exact_first = options_.exact_first;
+    for (int outer = 1; outer <= options_.max_outer; ++outer) {
+      no.decrement_tolerance = delta;
+      bool newton_ok = true;
+      std::string newton_message;
+      for (int update = 0; update <= options_.max_weight_updates; ++update) {
+        const NewtonStats s = newton(P, *solver_, no);
+        result.linear += s.linear_solves;
+        result.krylov += s.krylov_iterations;
+        result.newton += s.iterations;
+        if (s.iterations > 0) ++result.nonlinear;
+        newton_ok = s.converged;
+        newton_message = s.message;
+        if (!s.converged || !options_.adaptive_weights || !P.update_weights(options_.alpha, options_.beta)) break;
+      }
+      ++result.outer;
+      const double c = penalty.constraint_norm(P.state());
+      const double emax = penalty.max_error(P.state());
+      MorphIteration row;
+      row.step = step;
+      row.outer = outer;
+      row.constraint_norm = c;
+      row.boundary_error_max = emax;
+      row.min_quality = P.min_quality();
+      row.mu = penalty.mu;
+      row.nonlinear = result.nonlinear;
+      row.newton = result.newton;
+      row.linear = result.linear;
+      result.history.push_back(row);
+      log_progress("morph: step " + std::to_string(step) + ", AL iteration " + std::to_string(outer) +
+                   format(": boundary error %.3g (max %.3g), min quality %.3f, mu %.3g", c, emax, row.min_quality, penalty.mu));
+      if (emax <= tol_max && newton_ok && delta <= delta_star * (1 + 1e-12)) {
+        result.converged = true;
+        break;
+      }
+      if (!newton_ok && outer > 1 && c > 0.5 * result.history[result.history.size() - 2].constraint_norm &&
+          penalty.mu > 1e12 * mu0_) {
+        result.message = "the nonlinear solver stalled (" + newton_message + ")";
+        break;
+      }
+      if (c <= eps) {  // Algorithm 1, lines 10–15 (ε, δ as in Conn–Gould–Toint, DESIGN §6)
+        penalty.update_multipliers(P.state());
+        eps /= std::pow(m_, 0.9);
+        delta = std::max(delta / m_, delta_star);
+      } else {  // lines 16–21
+        m_ *= options_.m_factor;
+        penalty.mu = mu0_ * m_ / options_.m0;
+        eps = options_.eps0 * c_start * std::pow(options_.m0 / m_, 0.1);
+        delta = std::max(options_.delta0 * P.reference_energy() * (options_.m0 / m_), delta_star);
+      }
+    }
+    if (!result.converged && result.message.empty())
+      result.message = "the boundary was not reached within " + std::to_string(options_.max_outer) +
+                       " augmented-Lagrangian iterations (max error " +
+                       format("%.3g, tolerance %.3g)", result.history.back().boundary_error_max, tol_max);
+    x = P.state();
+    return result;
+  }
+
+ private:
+  MorphOptions options_;
+  MorphProblem<d> problem_;
+  std::unique_ptr<LinearSolver> solver_;
+  bool started_ = false;
+  double mu0_ = 1.0, m_ = 10.0;
+};
+
+}  // namespace
+
+Morpher::Morpher(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options) {
+  MESHMORPH_CHECK(bc.n_nodes() == input.n_nodes(), "Morpher: the boundary targets do not fit the mesh");
+  if (input.dim == 2)
+    impl_ = std::make_unique<MorphImpl<2>>(input, topology, bc, options);
+  else
+    impl_ = std::make_unique<MorphImpl<3>>(input, topology, bc, options);
+}
+
+Morpher::~Morpher() = default;
+
+MorphResult Morpher::solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) {
+  return impl_->solve(target, x, step);
+}
+
+}  // namespace meshmorph

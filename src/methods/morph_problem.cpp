@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+#include "methods/detail/morph_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <omp.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/quality/metric_registry.h"
+
+namespace meshmorph {
+
+template <int d>
+MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads)
+    : mesh_(&input), bc_(&bc), threads_(threads) {
+  targets_ = build_targets<d>(input, input.x, TargetKind::Input);
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0);
+  std::vector<std::int32_t> constrained;
+  for (std::size_t i = 0; i < input.n_nodes(); ++i) {
+    // Nodes in no cell (e.g. the centre points of Gmsh circle arcs) have no energy: not unknowns.
+    const bool orphan = topology.node_cell_offset[i + 1] == topology.node_cell_offset[i];
+    if (bc.role[i] == NodeRole::Fixed || orphan) std::fill_n(fixed.begin() + static_cast<std::ptrdiff_t>(d * i), d, std::uint8_t{1});
+    if (!orphan && (bc.role[i] == NodeRole::Prescribed || bc.role[i] == NodeRole::Slide)) constrained.push_back(static_cast<std::int32_t>(i));
+  }
+  dofs_ = DofMap::from_mask(d, fixed);
+  assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
+  metric_ = make_metric<d>("distortion2");
+  mass_ = boundary_mass(input, topology, input.x);
+  Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(d, static_cast<Eigen::Index>(constrained.size()));
+  penalty_slot_.assign(input.n_nodes(), -1);
+  for (std::size_t a = 0; a < constrained.size(); ++a) {
+    penalty_slot_[constrained[a]] = static_cast<std::int32_t>(a);
+    if (bc.role[constrained[a]] == NodeRole::Slide) normals.col(static_cast<Eigen::Index>(a)) = bc.normal.col(constrained[a]);
+  }
+  penalty_ = std::make_unique<BoundaryPenalty<d>>(mass_, std::move(constrained), std::move(normals));
+
+  weights_.assign(input.n_cells(), 1.0);
+  volumes_.reserve(input.n_cells());
+  for (const BlockTargets<d>& block : targets_.blocks)
+    for (std::size_t c = 0; c < block.points.size() / static_cast<std::size_t>(block.n_points()); ++c) {
+      double v = 0.0;
+      for (int q = 0; q < block.n_points(); ++q) v += block.cell(c)[q].weight;
+      volumes_.push_back(v);
+      reference_energy_ += v;
+    }
+  for (const CellBlock& block : input.cells)
+    if (block.order > 1 || !is_simplex(block.type)) dense_validity_ = true;
+  length_scale_ = (input.x.rowwise().maxCoeff() - input.x.rowwise().minCoeff()).norm();
+  x_ = input.x;
+}
+
+template <int d>
+Eigen::MatrixXd MorphProblem<d>::gather_targets(const Eigen::MatrixXd& target) const {
+  const std::vector<std::int32_t>& nodes = penalty_->nodes();
+  Eigen::MatrixXd g(d, static_cast<Eigen::Index>(nodes.size()));
+  for (std::size_t a = 0; a < nodes.size(); ++a)
+    g.col(static_cast<Eigen::Index>(a)) =
+        bc_->role[nodes[a]] == NodeRole::Slide ? bc_->target.col(nodes[a]) : target.col(nodes[a]);
+  return g;
+}
+
+template <int d>
+void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
+  AssemblyOptions o;
+  o.want = Want::Hessian;
+  o.hessian = mode;
+  o.weights = weights_;
+  o.threads = threads_;
+  assembler_->assemble(*metric_, x_, o, out);
+  if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, Want::Hessian, out);
+}
+
+template <int d>
+double MorphProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
+  trial_ = x_;
+  dofs_.add_step(p, alpha, trial_);
+  const double v = assembler_->value(*metric_, trial_, weights_, threads_);
+  return std::isfinite(v) ? v + penalty_->value(trial_) : v;
+}
+
+template <int d>
+bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
+  if (!dense_validity_) return true;  // linear simplices: a finite energy means det A > 0
+  trial_ = x_;
+  dofs_.add_step(p, alpha, trial_);
+  bool valid = true;
+  for (const CellBlock& block : mesh_->cells) {
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    const int n = block.n_nodes_per_cell();
+#pragma omp parallel for num_threads(threads_ > 0 ? threads_ : omp_get_max_threads()) reduction(&& : valid) schedule(static)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+      Eigen::MatrixXd X(d, n);
+      for (int a = 0; a < n; ++a) X.col(a) = trial_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
+      valid = valid && min_jacobian_det(block.type, block.order, X) > 0.0;
+    }
+  }
+  return valid;
+}
+
+template <int d>
+void MorphProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
+  dofs_.add_step(p, alpha, x_);
+}
+
+template <int d>
+double MorphProblem<d>::distortion_stiffness() {
+  AssemblyOptions o;
+  o.want = Want::Hessian;
+  o.hessian = HessianMode::Projected;
+  o.threads = threads_;
+  Assembly a;
+  assembler_->assemble(*metric_, x_, o, a);
+  const Eigen::VectorXd diagonal = a.hessian.diagonal();
+  double sum = 0.0;
+  int count = 0;
+  for (std::int32_t node : penalty_->nodes())
+    for (int k = 0; k < d; ++k) {
+      const std::int32_t i = dofs_.reduced(static_cast<std::size_t>(d) * node + k);
+      if (i >= 0) sum += diagonal[i], ++count;
+    }
+  MESHMORPH_CHECK(count > 0 && sum > 0.0, "MorphProblem: the constrained nodes have no stiffness");
+  return sum / count;
+}
+
+template <int d>
+std::vector<double> MorphProblem<d>::distortions() {
+  AssemblyOptions o;
+  o.want = Want::Gradient;
+  o.threads = threads_;
+  Assembly a;
+  assembler_->assemble(*metric_, x_, o, a);
+  std::vector<double> eta(volumes_.size());
+  for (std::size_t e = 0; e < eta.size(); ++e) eta[e] = std::sqrt(a.element_values[e] / volumes_[e]);
+  return eta;
+}
+
+template <int d>
+bool MorphProblem<d>::update_weights(double alpha, double beta) {
+  const std::vector<double> eta = distortions();
+  bool changed = false;
+  for (std::size_t e = 0; e < eta.size(); ++e) {
+    const double w = weights_[e];
+    const double w_hat = std::max(w, std::exp(std::min(alpha * (eta[e] - 1.0), 700.0)));
+    const double w_new = std::min(beta * w, w_hat);
+    if (w_new > w * (1.0 + 1e-12)) changed = true;
+    weights_[e] = w_new;
+  }
+  return changed;
+}
+
+template <int d>
+double MorphProblem<d>::min_quality() {
+  const std::vector<double> eta = distortions();
+  double q = 1.0;
+  for (double v : eta) q = std::min(q, std::isfinite(v) && v > 0.0 ? 1.0 / v : 0.0);
+  return q;
+}
+
+template class MorphProblem<2>;
+template class MorphProblem<3>;
+
+}  // namespace meshmorph

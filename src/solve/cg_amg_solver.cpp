@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "solve/detail/cg_amg_solver.h"
+
+#include <cmath>
+
+#include <omp.h>
+
+#include "meshmorph/error.h"
+
+namespace meshmorph::detail {
+namespace {
+
+int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
+
+// y += a·x
+void axpy(double a, const Eigen::VectorXd& x, Eigen::VectorXd& y, int threads) {
+  const int n = static_cast<int>(x.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int i = 0; i < n; ++i) y[i] += a * x[i];
+}
+
+}  // namespace
+
+AmgOptions amg_options(const LinearSolverOptions& options) {
+  AmgOptions amg;
+  amg.block_size = std::max(1, options.block_size);
+  amg.threads = thread_count(options.threads);
+  return amg;
+}
+
+CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options, const AmgOptions& amg)
+    : options_(options), amg_(amg) {}
+CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options) : CgAmgSolver(options, amg_options(options)) {}
+
+bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  ready_ = false;
+  A_ = view_of(A);
+  if (A_.n == 0) return ready_ = true;
+  ready_ = amg_.setup(A_);
+  return ready_;
+}
+
+LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+  LinearSolveStats stats;
+  if (!ready_) {
+    stats.message = "matrix not positive definite";
+    return stats;
+  }
+  const int n = A_.n;
+  MESHMORPH_CHECK(b.size() == n, "cg-amg: right-hand side of the wrong size");
+  const int threads = thread_count(options_.threads);
+  if (rtol <= 0.0) rtol = options_.rtol;
+  if (x.size() != n) x = Eigen::VectorXd::Zero(n);
+  r_.resize(n), z_.resize(n), p_.resize(n), q_.resize(n);
+  const double b_norm = std::sqrt(dot(b.data(), b.data(), n, threads));
+  if (b_norm == 0.0) {
+    x.setZero();
+    stats.ok = true;
+    return stats;
+  }
+  residual(A_, b.data(), x.data(), r_.data(), threads);
+  double r_norm = std::sqrt(dot(r_.data(), r_.data(), n, threads));
+  // CG on the recurrence residual; at its convergence the true residual is checked and CG
+  // restarts from it if rounding has let the two drift apart.
+  while (r_norm > rtol * b_norm && stats.iterations < options_.max_iterations) {
+    amg_.apply(r_.data(), z_.data());
+    double rz = dot(r_.data(), z_.data(), n, threads);
+    p_ = z_;
+    while (stats.iterations < options_.max_iterations) {
+      if (!(rz > 0.0)) {
+        stats.message = "preconditioner not positive definite";
+        stats.relative_residual = r_norm / b_norm;
+        return stats;
+      }
+      spmv(A_, p_.data(), q_.data(), threads);
+      const double pq = dot(p_.data(), q_.data(), n, threads);
+      ++stats.iterations;
+      if (!(pq > 0.0)) {
+        stats.message = "matrix not positive definite";
+        stats.relative_residual = r_norm / b_norm;
+        return stats;
+      }
+      const double alpha = rz / pq;
+      axpy(alpha, p_, x, threads);
+      axpy(-alpha, q_, r_, threads);
+      r_norm = std::sqrt(dot(r_.data(), r_.data(), n, threads));
+      if (r_norm <= rtol * b_norm) break;
+      amg_.apply(r_.data(), z_.data());
+      const double rz_new = dot(r_.data(), z_.data(), n, threads);
+      const double beta = rz_new / rz;
+      rz = rz_new;
+#pragma omp parallel for num_threads(threads) schedule(static)
+      for (int i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
+    }
+    residual(A_, b.data(), x.data(), r_.data(), threads);
+    r_norm = std::sqrt(dot(r_.data(), r_.data(), n, threads));
+  }
+  stats.relative_residual = r_norm / b_norm;
+  stats.ok = r_norm <= rtol * b_norm;
+  if (!stats.ok) stats.message = "cg-amg: no convergence in " + std::to_string(stats.iterations) + " iterations";
+  return stats;
+}
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "solve/detail/amg_csr.h"
+#include "solve/detail/cholmod_solver.h"
+
+namespace meshmorph::detail {
+
+/// Parameters of the smoothed-aggregation hierarchy.
+struct AmgOptions {
+  int block_size = 1;        ///< unknowns per node at the finest level (aggregated together)
+  int coarse_size = 500;     ///< a level with at most this many unknowns is solved by Cholesky
+  int max_levels = 12;
+  double strength = 0.08;    ///< θ of ‖A_IJ‖ ≥ θ √(‖A_II‖‖A_JJ‖) at level 0, halved per level
+  int smoother_degree = 2;   ///< Chebyshev polynomial degree of D⁻¹A (pre and post)
+  double smoother_ratio = 10.0;  ///< the Chebyshev interval is [λ/ratio, λ], λ = upper_factor·ρ̃
+  double upper_factor = 1.1;     ///< safety factor on the power-iteration estimate ρ̃ of ρ(D⁻¹A)
+  int power_iterations = 12;
+  int threads = 1;
+};
+
+/// Smoothed-aggregation algebraic multigrid (Vaněk, Mandel, Brezina 1996) used as a
+/// symmetric positive definite preconditioner: one V-cycle with Chebyshev smoothing.
+class AmgHierarchy {
+ public:
+  explicit AmgHierarchy(const AmgOptions& options) : options_(options) {}
+  /// Builds the levels for `A` (symmetric, both triangles; read through the view, so its
+  /// arrays must stay alive and unchanged while apply() is used). False when A is found not
+  /// positive definite (a diagonal entry ≤ 0, or a Cholesky pivot ≤ 0 of the coarsest
+  /// Galerkin operator).
+  bool setup(const SparseView& A);
+  /// z = M⁻¹ r, one V-cycle from a zero initial guess (z and r must not alias).
+  void apply(const double* r, double* z);
+
+  int n_levels() const { return static_cast<int>(levels_.size()); }
+  int rows(int level) const { return levels_[level].A.n; }
+  std::int64_t nnz(int level) const { return levels_[level].A.nnz(); }
+  /// Σ nnz(A_l) / nnz(A_0).
+  double operator_complexity() const;
+  /// The estimate of ρ(D⁻¹A) at a level.
+  double spectral_radius(int level) const { return levels_[level].rho; }
+
+ private:
+  struct Level {
+    SparseView A;    // the operator (level 0: the caller's matrix; else `own`)
+    Csr own;
+    Csr P, R;        // prolongator to this level from the next, and its transpose
+    std::vector<double> inv_diag;
+    double rho = 0.0;
+    int block = 1;
+    std::vector<double> x, b, r, d;
+  };
+  bool build_level(std::size_t l, std::vector<double>& weights);
+  void smooth(Level& L, bool zero_guess);
+  void cycle(std::size_t l);
+
+  AmgOptions options_;
+  std::vector<Level> levels_;
+  CholmodSolver coarse_;
+};
+
+/// Aggregates of the nodes of A (nodes are blocks of `block` unknowns), by strength of
+/// connection ‖A_IJ‖_F ≥ θ √(‖A_II‖_F ‖A_JJ‖_F): a node and its strong neighbours form an
+/// aggregate where none of them is taken, leftovers join a neighbouring aggregate, the rest
+/// form new ones. Returns the aggregate of each node; `n_aggregates` is set.
+std::vector<int> aggregate_nodes(const SparseView& A, int block, double theta, int threads, int& n_aggregates);
+
+}  // namespace meshmorph::detail

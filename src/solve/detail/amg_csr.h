@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "solve/detail/cholmod_solver.h"
+
+namespace meshmorph::detail {
+
+/// A rectangular sparse matrix in compressed rows with sorted column indices (the
+/// multigrid's prolongators, restrictions and coarse operators).
+struct Csr {
+  int rows = 0;
+  int cols = 0;
+  std::vector<int> ptr{0};
+  std::vector<int> idx;
+  std::vector<double> val;
+  std::int64_t nnz() const { return ptr.back(); }
+  /// Square and symmetric storage read as a SparseView (rows = columns).
+  SparseView view() const { return SparseView{rows, ptr.data(), idx.data(), val.data()}; }
+};
+
+/// y = A x over the rows of A (OpenMP, `threads` threads, static schedule).
+void spmv(const SparseView& A, const double* x, double* y, int threads);
+void spmv(const Csr& A, const double* x, double* y, int threads);
+/// r = b − A x.
+void residual(const SparseView& A, const double* b, const double* x, double* r, int threads);
+/// Aᵀ (rows become columns), sorted.
+Csr transpose(const Csr& A, int threads);
+/// C = A B (Gustavson, two passes: row counts then values), rows of C sorted. A is rows × k
+/// given as a view of a square matrix or a Csr; B is k × m.
+Csr multiply(const SparseView& A, const Csr& B, int threads);
+Csr multiply(const Csr& A, const Csr& B, int threads);
+
+double dot(const double* a, const double* b, int n, int threads);
+
+}  // namespace meshmorph::detail

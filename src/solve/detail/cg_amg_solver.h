@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <string>
+
+#include "solve/detail/amg.h"
+
+namespace meshmorph::detail {
+
+/// Conjugate gradients preconditioned by one smoothed-aggregation V-cycle ("cg-amg").
+/// factorize() rebuilds the hierarchy for the new values and keeps a view of A: A must stay
+/// alive and unchanged until the solves with it are done.
+class CgAmgSolver final : public LinearSolver {
+ public:
+  CgAmgSolver(const LinearSolverOptions& options, const AmgOptions& amg);
+  explicit CgAmgSolver(const LinearSolverOptions& options);
+
+  bool factorize(const Eigen::SparseMatrix<double>& A) override;
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  std::string name() const override { return "cg-amg"; }
+
+  const AmgHierarchy& hierarchy() const { return amg_; }
+
+ private:
+  LinearSolverOptions options_;
+  AmgHierarchy amg_;
+  SparseView A_{};
+  bool ready_ = false;
+  Eigen::VectorXd r_, z_, p_, q_;
+};
+
+/// The hierarchy's parameters for a solver's options (block size, threads).
+AmgOptions amg_options(const LinearSolverOptions& options);
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# check_morph.sh MESHMORPH EXAMPLES WORK: `morph` end to end on the annulus example — a
+# converged run writes a valid mesh and its report; bad motions exit 2 and write nothing; a
+# run out of budget and a baseline that inverts elements exit 1 and write no mesh.
+set -u
+mm=$1 examples=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+mesh=$(realpath "$examples/meshes/annulus.msh")
+fail() { echo "FAIL: $*"; exit 1; }
+field() { sed -n "s/^  \"$2\": \"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$1"; }
+make_case() {  # make_case NAME BOUNDARY_JSON [OPTIONS_JSON]
+  printf '{"mesh": "%s", "boundary": %s, "options": %s, "output": "%s.vtu", "report": "%s.json"}\n' \
+    "$mesh" "$2" "${3:-{\}}" "$1" "$1" > "$work/$1.case.json"
+}
+expect() {  # expect NAME EXIT [PATTERN]: runs the case, checks exit code and stderr
+  "$mm" morph "$work/$1.case.json" --quiet > "$work/$1.out" 2> "$work/$1.err"
+  local rc=$?
+  [ "$rc" = "$2" ] || fail "$1: exit $rc, expected $2: $(cat "$work/$1.err")"
+  [ -z "${3:-}" ] || grep -q "$3" "$work/$1.err" "$work/$1.out" || fail "$1: no '$3' in $(cat "$work/$1.err")"
+}
+rotate='[{"group": "inner", "rotate": {"center": [0, 0], "degrees": 15}}, {"group": "outer", "fixed": true}]'
+
+make_case ok "$rotate"
+expect ok 0
+[ -s "$work/ok.vtu" ] || fail "ok: no mesh written"
+[ "$(field "$work/ok.json" valid)" = true ] || fail "ok: report not valid"
+[ "$(field "$work/ok.json" converged)" = true ] || fail "ok: not converged"
+awk -v e="$(field "$work/ok.json" boundary_error_max)" 'BEGIN { exit !(e < 1e-8) }' || fail "ok: boundary error"
+"$mm" --quiet quality "$work/ok.vtu" > /dev/null || fail "ok: output unreadable"
+
+make_case unknown_group '[{"group": "rotor", "translate": [1, 0]}]'
+expect unknown_group 2 "rotor"
+make_case unreachable '[{"group": "inner", "project": {"expr": "x^2 + y^2 + 1"}}]'
+expect unreachable 2 "cannot reach"
+printf 'node,dx,dy\n1,0.1,0\n' > "$work/short.csv"
+make_case missing_row "[{\"group\": \"inner\", \"displace\": {\"file\": \"short.csv\"}}]"
+expect missing_row 2 "has no row for node"
+make_case budget "$rotate" '{"max_outer": 1}'
+expect budget 1 "augmented-Lagrangian iterations"
+[ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
+make_case laplace '[{"group": "inner", "rotate": {"center": [0, 0], "degrees": 120}}]' '{"method": "laplace"}'
+expect laplace 1 "inverted elements"
+for name in unknown_group unreachable missing_row budget laplace; do
+  [ ! -e "$work/$name.vtu" ] || fail "$name: a mesh was written"
+done
+for name in unknown_group unreachable missing_row; do
+  [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
+done
+echo "morph CLI checks passed"

@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/morph.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/quality/element_quality.h"
+
+namespace meshmorph {
+namespace {
+
+// x ↦ s R x + t: a rotation about a skew axis (3D) or by 35° (2D), scaled and translated.
+Eigen::MatrixXd similarity(const Eigen::MatrixXd& x) {
+  const int d = static_cast<int>(x.rows());
+  Eigen::MatrixXd R;
+  if (d == 2) {
+    const double a = 35.0 * M_PI / 180.0;
+    R = Eigen::Rotation2Dd(a).toRotationMatrix();
+  } else {
+    R = Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  }
+  Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(d, 0.3, -0.2);
+  return ((1.3 * R * x).colwise() + t).eval();
+}
+
+BoundaryTargets all_boundary(const Mesh& mesh, const Topology& topo, const Eigen::MatrixXd& target) {
+  BoundaryTargets bc;
+  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
+  bc.target = mesh.x;
+  bc.normal = Eigen::MatrixXd::Zero(mesh.dim, static_cast<Eigen::Index>(mesh.n_nodes()));
+  for (std::int32_t node : boundary_nodes(mesh, topo)) {
+    bc.role[node] = NodeRole::Prescribed;
+    bc.target.col(node) = target.col(node);
+  }
+  return bc;
+}
+
+double min_quality(const Mesh& input, const Eigen::MatrixXd& x) {
+  Mesh moved = input;
+  moved.x = x;
+  double q = 1.0;
+  for (const CellBlock& block : input.cells)
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const Eigen::MatrixXd X0 = cell_coordinates(input, block, c), X = cell_coordinates(moved, block, c);
+      q = std::min(q, element_quality(block.type, block.order, X, &X0));
+    }
+  return q;
+}
+
+struct Case {
+  ElementType type;
+  int order;
+  int n;
+};
+
+class MorphAffine : public ::testing::TestWithParam<Case> {};
+
+// Exactness: a similarity of the whole boundary is reproduced in the interior, quality 1.
+TEST_P(MorphAffine, ReproducesASimilarityOfTheBoundaryExactly) {
+  const Case c = GetParam();
+  const Mesh mesh = structured_mesh(c.type, c.order, c.n);
+  const Topology topo = build_topology(mesh);
+  const Eigen::MatrixXd exact = similarity(mesh.x);
+  const BoundaryTargets bc = all_boundary(mesh, topo, exact);
+  MorphOptions o;
+  o.tolerance = 1e-13;
+  o.solver = LinearSolverKind::Cholesky;
+  Morpher morpher(mesh, topo, bc, o);
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = morpher.solve(bc.target, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_NEAR(min_quality(mesh, x), 1.0, 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryTypeAndOrder, MorphAffine,
+    ::testing::Values(Case{ElementType::Triangle, 1, 4}, Case{ElementType::Triangle, 2, 3}, Case{ElementType::Triangle, 3, 2},
+                      Case{ElementType::Triangle, 4, 2}, Case{ElementType::Quadrilateral, 1, 4},
+                      Case{ElementType::Quadrilateral, 2, 3}, Case{ElementType::Quadrilateral, 3, 2},
+                      Case{ElementType::Tetrahedron, 1, 3}, Case{ElementType::Tetrahedron, 2, 2},
+                      Case{ElementType::Tetrahedron, 3, 1}, Case{ElementType::Tetrahedron, 4, 1},
+                      Case{ElementType::Hexahedron, 1, 3}, Case{ElementType::Hexahedron, 2, 2},
+                      Case{ElementType::Hexahedron, 3, 1}),
+    [](const ::testing::TestParamInfo<Case>& param) {
+      return std::string(name_of(param.param.type)) + "_p" + std::to_string(param.param.order);
+    });
+
+// Sliding nodes keep their plane and move along it: the left and right sides translate by
+// 0.2 in x, the bottom and top slide on y = const, so the exact answer is the translation.
+TEST(Morph, SlidingNodesFollowATranslationAlongTheirPlane) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 2, 4);
+  const Topology topo = build_topology(mesh);
+  Eigen::MatrixXd exact = mesh.x;
+  exact.row(0).array() += 0.2;
+  BoundaryTargets bc = all_boundary(mesh, topo, exact);
+  for (std::int32_t node : boundary_nodes(mesh, topo)) {
+    const double y = mesh.x(1, node), x = mesh.x(0, node);
+    if ((y < 1e-12 || y > 1 - 1e-12) && x > 1e-12 && x < 1 - 1e-12) {
+      bc.role[node] = NodeRole::Slide;
+      bc.target.col(node) = mesh.x.col(node);
+      bc.normal.col(node) = Eigen::Vector2d(0, 1);
+    }
+  }
+  MorphOptions o;
+  o.tolerance = 1e-13;
+  Morpher morpher(mesh, topo, bc, o);
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = morpher.solve(bc.target, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// A time series in 4 steps ends where one step does (the minimiser is unique), and the
+// history has a row per augmented-Lagrangian iteration of every step.
+TEST(Morph, StepsReachTheSameSimilarity) {
+  const Mesh mesh = structured_mesh(ElementType::Quadrilateral, 1, 4);
+  const Topology topo = build_topology(mesh);
+  const Eigen::MatrixXd exact = similarity(mesh.x);
+  const BoundaryTargets bc = all_boundary(mesh, topo, exact);
+  MorphOptions o;
+  o.tolerance = 1e-13;
+  Morpher morpher(mesh, topo, bc, o);
+  Eigen::MatrixXd x = mesh.x;
+  std::size_t rows = 0;
+  for (int s = 1; s <= 4; ++s) {
+    const Eigen::MatrixXd g = mesh.x + (s / 4.0) * (exact - mesh.x);  // a linear path
+    const MorphResult r = morpher.solve(g, x, s);
+    ASSERT_TRUE(r.converged) << "step " << s << ": " << r.message;
+    EXPECT_EQ(r.history.front().step, s);
+    rows += r.history.size();
+  }
+  EXPECT_GE(rows, 4u);
+  EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// With one augmented-Lagrangian iteration the boundary is not reached: not converged, a
+// message, and the coordinates are still a valid mesh.
+TEST(Morph, AnExhaustedBudgetReportsWhyAndLeavesAValidMesh) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 6);
+  const Topology topo = build_topology(mesh);
+  const BoundaryTargets bc = all_boundary(mesh, topo, similarity(mesh.x));
+  MorphOptions o;
+  o.max_outer = 1;
+  Morpher morpher(mesh, topo, bc, o);
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = morpher.solve(bc.target, x);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("augmented-Lagrangian iterations"), std::string::npos) << r.message;
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+}
+
+TEST(Morph, RejectsAnInvertedInputMesh) {
+  Mesh mesh = structured_mesh(ElementType::Triangle, 1, 2);
+  mesh.x.col(4) = Eigen::Vector2d(1.4, 1.4);  // the centre node beyond the top-right corner
+  const Topology topo = build_topology(mesh);
+  const BoundaryTargets bc = all_boundary(mesh, topo, mesh.x);
+  EXPECT_THROW(Morpher(mesh, topo, bc, MorphOptions{}), InputError);
+}
+
+}  // namespace
+}  // namespace meshmorph

@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/solve/linear_solver.h"
+
+#include <gtest/gtest.h>
+
+#include "solve/detail/cg_amg_solver.h"
+#include "solve/detail/cholmod_solver.h"
+#include "solve/linear_solver_fixtures.h"
+
+namespace meshmorph {
+namespace {
+
+double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
+  return (b - A * x).norm() / b.norm();
+}
+
+LinearSolverOptions options_for(LinearSolverKind kind, int dim) {
+  LinearSolverOptions o;
+  o.kind = kind;
+  o.dim = dim;
+  o.block_size = dim;
+  o.threads = 1;
+  return o;
+}
+
+// The iterative backend with a small coarsest level, so that these small test matrices get
+// a hierarchy of several levels.
+std::unique_ptr<LinearSolver> multilevel_solver(int dim, int coarse_size = 60) {
+  const LinearSolverOptions o = options_for(LinearSolverKind::Iterative, dim);
+  detail::AmgOptions amg = detail::amg_options(o);
+  amg.coarse_size = coarse_size;
+  return std::make_unique<detail::CgAmgSolver>(o, amg);
+}
+
+struct Case {
+  const char* name;
+  int dim;
+  Eigen::SparseMatrix<double> A;
+};
+
+std::vector<Case> spd_cases() {
+  std::vector<Case> cases;
+  cases.push_back({"laplace-2d", 2, test::stiffness_matrix(2, 24, false)});
+  cases.push_back({"elasticity-2d", 2, test::stiffness_matrix(2, 24, true, 10.0, 1.0)});
+  cases.push_back({"laplace-3d", 3, test::stiffness_matrix(3, 8, false)});
+  cases.push_back({"elasticity-3d", 3, test::stiffness_matrix(3, 8, true, 1.0, 1.0)});
+  cases.push_back({"hessian-2d-p2", 2, test::energy_hessian<2>(2, 10)});
+  cases.push_back({"hessian-3d-p1", 3, test::energy_hessian<3>(1, 8)});
+  return cases;
+}
+
+TEST(LinearSolver, BothBackendsSolveSpdSystemsToTheRequestedResidual) {
+  for (const Case& c : spd_cases()) {
+    SCOPED_TRACE(c.name);
+    const Eigen::VectorXd b = test::random_vector(c.A.rows());
+    const auto n = static_cast<std::size_t>(c.A.rows());
+    std::vector<std::unique_ptr<LinearSolver>> solvers;
+    solvers.push_back(make_linear_solver(options_for(LinearSolverKind::Cholesky, c.dim), n));
+    solvers.push_back(make_linear_solver(options_for(LinearSolverKind::Iterative, c.dim), n));
+    solvers.push_back(multilevel_solver(c.dim));
+    for (const auto& solver : solvers) {
+      SCOPED_TRACE(solver->name());
+      ASSERT_TRUE(solver->factorize(c.A));
+      const bool direct = solver->name() == "cholmod";
+      for (double rtol : {1e-4, 1e-10}) {
+        Eigen::VectorXd x;
+        const LinearSolveStats stats = solver->solve(b, x, rtol);
+        EXPECT_TRUE(stats.ok) << stats.message;
+        const double res = relative_residual(c.A, b, x);
+        EXPECT_LE(res, direct ? 1e-12 : rtol);
+        if (!direct) {
+          EXPECT_NEAR(stats.relative_residual, res, 1e-3 * rtol);
+          EXPECT_GT(stats.iterations, 0);
+          EXPECT_LT(stats.iterations, 40);
+        }
+      }
+    }
+  }
+}
+
+TEST(LinearSolver, IterativeSolveFromTheSolutionTakesNoIteration) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(2, 16, true);
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  auto solver = multilevel_solver(2);
+  ASSERT_TRUE(solver->factorize(A));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver->solve(b, x, 1e-10).ok);
+  const LinearSolveStats again = solver->solve(b, x, 1e-6);
+  EXPECT_TRUE(again.ok);
+  EXPECT_EQ(again.iterations, 0);
+  EXPECT_LE(again.relative_residual, 1e-10);
+}
+
+// Mesh independence of smoothed aggregation: from n = 8 to n = 16 cells per side in 3D
+// (8x the unknowns, one more level) the CG iteration count at most doubles.
+TEST(LinearSolver, IterativeIterationsStayBoundedUnderRefinement) {
+  for (int kind = 0; kind < 3; ++kind) {
+    SCOPED_TRACE(kind);
+    int iterations[2] = {0, 0};
+    int levels[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      const int n = 8 << k;
+      const Eigen::SparseMatrix<double> A =
+          kind == 2 ? test::energy_hessian<3>(1, n) : test::stiffness_matrix(3, n, kind == 1);
+      const Eigen::VectorXd b = test::random_vector(A.rows());
+      const LinearSolverOptions o = options_for(LinearSolverKind::Iterative, 3);
+      detail::AmgOptions amg = detail::amg_options(o);
+      amg.coarse_size = 200;
+      detail::CgAmgSolver solver(o, amg);
+      ASSERT_TRUE(solver.factorize(A));
+      Eigen::VectorXd x;
+      const LinearSolveStats stats = solver.solve(b, x, 1e-8);
+      ASSERT_TRUE(stats.ok) << stats.message;
+      EXPECT_LE(relative_residual(A, b, x), 1e-8);
+      iterations[k] = stats.iterations;
+      levels[k] = solver.hierarchy().n_levels();
+    }
+    EXPECT_GT(levels[1], levels[0]);
+    EXPECT_GE(levels[0], 2);
+    EXPECT_LE(iterations[1], 2 * iterations[0]) << iterations[0] << " → " << iterations[1];
+    EXPECT_LE(iterations[1], 30);
+  }
+}
+
+TEST(LinearSolver, CholeskyReusesItsAnalysisWhileThePatternIsUnchanged) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 6, true);
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  detail::CholmodSolver solver;
+  ASSERT_TRUE(solver.factorize(A));
+  EXPECT_EQ(solver.n_analyses(), 1);
+  // New values on the same pattern: same analysis, the solution of the new matrix.
+  Eigen::SparseMatrix<double> B = A;
+  for (int k = 0; k < B.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(B, k); it; ++it)
+      if (it.row() == it.col()) it.valueRef() *= 3.0;
+  ASSERT_TRUE(solver.factorize(B));
+  EXPECT_EQ(solver.n_analyses(), 1);
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(b, x).ok);
+  EXPECT_LE(relative_residual(B, b, x), 1e-12);
+  // Another pattern: analysed again.
+  const Eigen::SparseMatrix<double> C = test::stiffness_matrix(3, 6, false);
+  ASSERT_TRUE(solver.factorize(C));
+  EXPECT_EQ(solver.n_analyses(), 2);
+  ASSERT_TRUE(solver.solve(test::random_vector(C.rows()), x).ok);
+  EXPECT_LE(relative_residual(C, test::random_vector(C.rows()), x), 1e-12);
+}
+
+// A − σI with σ between the smallest and the largest eigenvalue of A: indefinite, with a
+// positive diagonal.
+Eigen::SparseMatrix<double> shifted(const Eigen::SparseMatrix<double>& A, double sigma) {
+  Eigen::SparseMatrix<double> I(A.rows(), A.cols());
+  I.setIdentity();
+  Eigen::SparseMatrix<double> S = A - sigma * I;
+  S.makeCompressed();
+  return S;
+}
+
+TEST(LinearSolver, CholeskyReportsAnIndefiniteMatrixAndStaysUsable) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(2, 12, true);
+  const double mean_diagonal = A.diagonal().mean();
+  detail::CholmodSolver solver;
+  EXPECT_FALSE(solver.factorize(shifted(A, 0.5 * mean_diagonal)));
+  Eigen::VectorXd x;
+  EXPECT_FALSE(solver.solve(test::random_vector(A.rows()), x).ok);
+  ASSERT_TRUE(solver.factorize(A));
+  EXPECT_EQ(solver.n_analyses(), 1);
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  ASSERT_TRUE(solver.solve(b, x).ok);
+  EXPECT_LE(relative_residual(A, b, x), 1e-12);
+}
+
+TEST(LinearSolver, IterativeReportsAnIndefiniteMatrix) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(2, 24, true);
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  // Indefinite everywhere (σ = half the mean diagonal) and, separately, through one pair
+  // of unknowns only (a_ij = 3√(a_ii a_jj): e_i − e_j has negative curvature).
+  Eigen::SparseMatrix<double> local = A;
+  const int i = 40, j = 41;
+  local.coeffRef(i, j) = local.coeffRef(j, i) = 3.0 * std::sqrt(A.coeff(i, i) * A.coeff(j, j));
+  local.makeCompressed();
+  for (const auto& M : {shifted(A, 0.5 * A.diagonal().mean()), local}) {
+    auto solver = multilevel_solver(2);
+    Eigen::VectorXd x;
+    if (solver->factorize(M)) {
+      const LinearSolveStats stats = solver->solve(b, x, 1e-10);
+      EXPECT_FALSE(stats.ok);
+      EXPECT_NE(stats.message.find("not positive definite"), std::string::npos) << stats.message;
+    } else {
+      EXPECT_FALSE(solver->solve(b, x).ok);
+    }
+  }
+}
+
+// CG's own check: the hierarchy is built for A, then the values change in place to
+// A − σI (same pattern); CG meets pᵀ(A − σI)p ≤ 0 and stops.
+TEST(LinearSolver, IterativeStopsAtNegativeCurvature) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 10, true);
+  const Eigen::SparseMatrix<double> S = shifted(A, 0.5 * A.diagonal().mean());
+  ASSERT_EQ(S.nonZeros(), A.nonZeros());
+  Eigen::SparseMatrix<double> M = A;
+  auto solver = multilevel_solver(3);
+  ASSERT_TRUE(solver->factorize(M));
+  std::copy(S.valuePtr(), S.valuePtr() + S.nonZeros(), M.valuePtr());
+  Eigen::VectorXd x;
+  const LinearSolveStats stats = solver->solve(test::random_vector(A.rows()), x, 1e-10);
+  EXPECT_FALSE(stats.ok);
+  EXPECT_EQ(stats.message, "matrix not positive definite");
+  EXPECT_GT(stats.iterations, 0);
+}
+
+TEST(LinearSolver, AutoPicksCholeskyIn2DAndForSmall3DSystems) {
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 2, 5'000'000), LinearSolverKind::Cholesky);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 3'000), LinearSolverKind::Cholesky);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 20'000), LinearSolverKind::Cholesky);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 40'000), LinearSolverKind::Iterative);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Iterative, 2, 10), LinearSolverKind::Iterative);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Cholesky, 3, 10'000'000), LinearSolverKind::Cholesky);
+  LinearSolverOptions o;
+  o.dim = 3;
+  EXPECT_EQ(make_linear_solver(o, 1000)->name(), "cholmod");
+  EXPECT_EQ(make_linear_solver(o, 1'000'000)->name(), "cg-amg");
+}
+
+}  // namespace
+}  // namespace meshmorph

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/solve/newton.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <gtest/gtest.h>
+
+namespace meshmorph {
+namespace {
+
+// A dense LLᵀ behind the LinearSolver interface, so these tests depend on Newton alone.
+class DenseSolver final : public LinearSolver {
+ public:
+  bool factorize(const Eigen::SparseMatrix<double>& A) override {
+    llt_.compute(Eigen::MatrixXd(A));
+    ++factorizations;
+    return llt_.info() == Eigen::Success;
+  }
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double) override {
+    x = llt_.solve(b);
+    return {true, 0, 0.0, {}};
+  }
+  std::string name() const override { return "dense"; }
+  int factorizations = 0;
+
+ private:
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+// f(x) = Σ_i (x_i² − 1)² / 4 + ½ s ‖x − c‖², a non-convex function whose Hessian x_i²·3 − 1 + s
+// is indefinite near 0; +∞ for x_0 ≤ barrier (a stand-in for an inverted element).
+class Quartic final : public NewtonProblem {
+ public:
+  Quartic(Eigen::VectorXd x0, double s, Eigen::VectorXd c, double barrier)
+      : x(std::move(x0)), s_(s), c_(std::move(c)), barrier_(barrier) {}
+  double f(const Eigen::VectorXd& y) const {
+    if (y[0] <= barrier_) return std::numeric_limits<double>::infinity();
+    return 0.25 * (y.array().square() - 1.0).square().sum() + 0.5 * s_ * (y - c_).squaredNorm();
+  }
+  void evaluate(HessianMode mode, Assembly& out) override {
+    ++evaluations;
+    out.value = f(x);
+    out.gradient = (x.array().cube() - x.array()).matrix() + s_ * (x - c_);
+    Eigen::VectorXd diag = (3.0 * x.array().square() - 1.0 + s_).matrix();
+    if (mode == HessianMode::Projected) diag = diag.cwiseMax(0.0);
+    out.hessian.resize(x.size(), x.size());
+    out.hessian.setIdentity();
+    for (Eigen::Index i = 0; i < x.size(); ++i) out.hessian.coeffRef(i, i) = diag[i];
+  }
+  double trial_value(const Eigen::VectorXd& p, double alpha) override { return f(x + alpha * p); }
+  void accept(const Eigen::VectorXd& p, double alpha) override {
+    EXPECT_TRUE(std::isfinite(f(x + alpha * p)));
+    x += alpha * p;
+  }
+  Eigen::VectorXd x;
+  int evaluations = 0;
+
+ private:
+  double s_;
+  Eigen::VectorXd c_;
+  double barrier_;
+};
+
+TEST(Newton, ConvergesQuadraticallyOnAStronglyConvexProblem) {
+  Eigen::VectorXd x0(3), c(3);
+  x0 << 2.0, -1.5, 0.7;
+  c << 1.5, -1.2, 1.1;
+  Quartic q(x0, 2.0, c, -10.0);
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-28;
+  const NewtonStats s = newton(q, solver, o);
+  ASSERT_TRUE(s.converged) << s.message;
+  const Eigen::VectorXd g = (q.x.array().cube() - q.x.array()).matrix() + 2.0 * (q.x - c);
+  EXPECT_LT(g.norm(), 1e-13);
+  EXPECT_LE(s.iterations, 8);  // quadratic convergence: a handful of steps
+}
+
+TEST(Newton, FallsBackToTheProjectedHessianWhereTheExactOneIsIndefinite) {
+  // Start near 0, where 3x² − 1 + s < 0: the exact Hessian is not positive definite.
+  Eigen::VectorXd x0(2), c(2);
+  x0 << 0.05, -0.02;
+  c << 0.0, 0.0;
+  Quartic q(x0, 0.5, c, -10.0);
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-24;
+  const NewtonStats s = newton(q, solver, o);
+  ASSERT_TRUE(s.converged) << s.message;
+  // Minima of (x² − 1)²/4 + x²/4: x² = 1/2.
+  EXPECT_NEAR(std::abs(q.x[0]), std::sqrt(0.5), 1e-10);
+  EXPECT_NEAR(std::abs(q.x[1]), std::sqrt(0.5), 1e-10);
+  EXPECT_GT(s.linear_solves, s.iterations);  // some exact attempts were rejected
+}
+
+TEST(Newton, NeverAcceptsAPointBeyondTheBarrier) {
+  // The unconstrained minimum in x_0 is near 1.2, but the barrier x_0 > 0.9 … is not active
+  // there; start just above a barrier that the full step would cross.
+  Eigen::VectorXd x0(1), c(1);
+  x0 << 3.0;
+  c << -3.0;
+  Quartic q(x0, 1.0, c, 0.5);  // the minimum of f lies below 0.5: the barrier is active
+  DenseSolver solver;
+  NewtonOptions o;
+  o.max_iterations = 60;
+  const NewtonStats s = newton(q, solver, o);
+  EXPECT_GT(q.x[0], 0.5);  // accept() checks every accepted point is finite
+  EXPECT_TRUE(std::isfinite(s.value));
+}
+
+TEST(Newton, ReportsANonFiniteStart) {
+  Eigen::VectorXd x0(1), c(1);
+  x0 << 0.0;
+  c << 0.0;
+  Quartic q(x0, 1.0, c, 0.5);
+  DenseSolver solver;
+  const NewtonStats s = newton(q, solver, {});
+  EXPECT_FALSE(s.converged);
+  EXPECT_NE(s.message.find("not finite"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace meshmorph
