@@ -21,12 +21,14 @@
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/quality/metric_registry.h"
 
+#include "bench_clock.h"
+
 namespace {
 
 using namespace meshmorph;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using bench::Clock;
+using bench::peak_rss_mb;
+using bench::seconds_since;
 
 // CPU time of the whole process (all threads): robust to other load on a shared machine.
 double cpu_seconds() {
@@ -35,11 +37,6 @@ double cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
 
 // The interior nodes moved at random by up to 10% of the node spacing: a valid state where
 // the metric Hessians are indefinite at some points, as in a Newton step of a morph.

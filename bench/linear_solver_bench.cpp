@@ -21,18 +21,15 @@
 #include "meshmorph/quality/metric_registry.h"
 #include "meshmorph/solve/linear_solver.h"
 
+#include "bench_clock.h"
+
 namespace {
 
 using namespace meshmorph;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::peak_rss_mb;
+using bench::seconds_since;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
-}
 
 }  // namespace
 
