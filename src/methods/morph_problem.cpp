@@ -103,6 +103,7 @@ bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
 template <int d>
 void MorphProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
   dofs_.add_step(p, alpha, x_);
+  ++version_;
 }
 
 template <int d>
@@ -126,20 +127,23 @@ double MorphProblem<d>::distortion_stiffness() {
 }
 
 template <int d>
-std::vector<double> MorphProblem<d>::distortions() {
+const std::vector<double>& MorphProblem<d>::distortions() {
+  // update_weights() and min_quality() both read η_e at the end of an AL iteration: one assembly.
+  if (eta_version_ == version_) return eta_;
   AssemblyOptions o;
   o.want = Want::Gradient;
   o.threads = threads_;
   Assembly a;
   assembler_->assemble(*metric_, x_, o, a);
-  std::vector<double> eta(volumes_.size());
-  for (std::size_t e = 0; e < eta.size(); ++e) eta[e] = std::sqrt(a.element_values[e] / volumes_[e]);
-  return eta;
+  eta_.resize(volumes_.size());
+  for (std::size_t e = 0; e < eta_.size(); ++e) eta_[e] = std::sqrt(a.element_values[e] / volumes_[e]);
+  eta_version_ = version_;
+  return eta_;
 }
 
 template <int d>
 bool MorphProblem<d>::update_weights(double alpha, double beta) {
-  const std::vector<double> eta = distortions();
+  const std::vector<double>& eta = distortions();
   bool changed = false;
   for (std::size_t e = 0; e < eta.size(); ++e) {
     const double w = weights_[e];
@@ -153,7 +157,7 @@ bool MorphProblem<d>::update_weights(double alpha, double beta) {
 
 template <int d>
 double MorphProblem<d>::min_quality() {
-  const std::vector<double> eta = distortions();
+  const std::vector<double>& eta = distortions();
   double q = 1.0;
   for (double v : eta) q = std::min(q, std::isfinite(v) && v > 0.0 ? 1.0 / v : 0.0);
   return q;

@@ -21,7 +21,10 @@ class MorphProblem final : public NewtonProblem {
   MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads);
 
   std::size_t n_free() const { return dofs_.n_free(); }
-  void set_state(const Eigen::MatrixXd& x) { x_ = x; }
+  void set_state(const Eigen::MatrixXd& x) {
+    x_ = x;
+    ++version_;
+  }
   const Eigen::MatrixXd& state() const { return x_; }
   BoundaryPenalty<d>& penalty() { return *penalty_; }
   /// The penalty's targets from a full d × n target (Prescribed) and bc.target (Slide).
@@ -46,7 +49,7 @@ class MorphProblem final : public NewtonProblem {
   void accept(const Eigen::VectorXd& p, double alpha) override;
 
  private:
-  std::vector<double> distortions();  // η_e per cell at the current state
+  const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
   const Mesh* mesh_;
   const BoundaryTargets* bc_;
   int threads_;
@@ -61,6 +64,8 @@ class MorphProblem final : public NewtonProblem {
   double reference_energy_ = 0.0, length_scale_ = 1.0;
   bool dense_validity_ = false;  // curved or tensor cells: check validity beyond the quadrature points
   Eigen::MatrixXd x_, trial_;
+  std::vector<double> eta_;     // distortions() of the state with version eta_version_
+  long long version_ = 0, eta_version_ = -1;  // bumped by every change of x_
 };
 
 }  // namespace meshmorph
