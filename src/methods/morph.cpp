@@ -75,14 +75,18 @@ class MorphImpl final : public Morpher::Impl {
       bool newton_ok = true;
       std::string newton_message;
       for (int update = 0; update <= options_.max_weight_updates; ++update) {
-        const NewtonStats s = newton(P, *solver_, no);
+        const NewtonStats s = newton(P, *solver_, no, &newton_memory_);
         result.linear += s.linear_solves;
         result.krylov += s.krylov_iterations;
         result.newton += s.iterations;
         if (s.iterations > 0) ++result.nonlinear;
         newton_ok = s.converged;
         newton_message = s.message;
-        if (!s.converged || !options_.adaptive_weights || !P.update_weights(options_.alpha, options_.beta)) break;
+        // Algorithm 2: stop once the gradient is below δ with the weights just updated, i.e.
+        // when Newton has nothing to do after an update.
+        if (!s.converged || (update > 0 && s.iterations == 0) || !options_.adaptive_weights ||
+            !P.update_weights(options_.alpha, options_.beta))
+          break;
       }
       ++result.outer;
       const double c = penalty.constraint_norm(P.state());
@@ -132,6 +136,7 @@ class MorphImpl final : public Morpher::Impl {
   MorphOptions options_;
   MorphProblem<d> problem_;
   std::unique_ptr<LinearSolver> solver_;
+  NewtonMemory newton_memory_;  // shift and factorization carried from one subproblem to the next
   bool started_ = false;
   double mu0_ = 1.0, m_ = 10.0;
 };

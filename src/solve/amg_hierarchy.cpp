@@ -47,7 +47,6 @@ double AmgHierarchy::operator_complexity() const {
 }
 
 bool AmgHierarchy::setup(const SparseView& A) {
-  const int threads = std::max(1, options_.threads);
   const int block = options_.block_size > 0 && A.n % options_.block_size == 0 ? options_.block_size : 1;
   levels_.clear();
   levels_.emplace_back();
@@ -58,25 +57,36 @@ bool AmgHierarchy::setup(const SparseView& A) {
   // near-null space keeps that form: a weight per node, the same for every component.
   std::vector<double> weights(static_cast<std::size_t>(A.n / block), 1.0);
   for (std::size_t l = 0;; ++l) {
-    Level& L = levels_[l];
-    const int n = L.A.n;
-    L.inv_diag.assign(static_cast<std::size_t>(n), 0.0);
-    bool positive = true;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : positive)
-    for (int i = 0; i < n; ++i) {
-      double a = 0.0;
-      for (int k = L.A.outer[i]; k < L.A.outer[i + 1]; ++k)
-        if (L.A.inner[k] == i) a += L.A.values[k];
-      positive = positive && a > 0.0;
-      L.inv_diag[i] = a > 0.0 ? 1.0 / a : 0.0;
-    }
-    if (!positive) return false;
-    L.rho = spectral_radius_estimate(L.A, L.inv_diag, options_.power_iterations, threads);
-    for (auto* v : {&L.x, &L.b, &L.r, &L.d}) v->assign(static_cast<std::size_t>(n), 0.0);
-    const bool last = n <= options_.coarse_size || l + 1 >= static_cast<std::size_t>(options_.max_levels) ||
+    if (!prepare_level(levels_[l])) return false;
+    const bool last = levels_[l].A.n <= options_.coarse_size || l + 1 >= static_cast<std::size_t>(options_.max_levels) ||
                       !build_level(l, weights);
     if (last) return coarse_.factorize(levels_[l].A);
   }
+}
+
+bool AmgHierarchy::rebind(const SparseView& A) {
+  if (levels_.empty() || A.n != levels_[0].A.n || levels_.size() == 1) return false;  // one level: A is the coarse factor's
+  levels_[0].A = A;
+  return prepare_level(levels_[0]);
+}
+
+bool AmgHierarchy::prepare_level(Level& L) {
+  const int threads = std::max(1, options_.threads);
+  const int n = L.A.n;
+  L.inv_diag.assign(static_cast<std::size_t>(n), 0.0);
+  bool positive = true;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : positive)
+  for (int i = 0; i < n; ++i) {
+    double a = 0.0;
+    for (int k = L.A.outer[i]; k < L.A.outer[i + 1]; ++k)
+      if (L.A.inner[k] == i) a += L.A.values[k];
+    positive = positive && a > 0.0;
+    L.inv_diag[i] = a > 0.0 ? 1.0 / a : 0.0;
+  }
+  if (!positive) return false;
+  L.rho = spectral_radius_estimate(L.A, L.inv_diag, options_.power_iterations, threads);
+  for (auto* v : {&L.x, &L.b, &L.r, &L.d}) v->assign(static_cast<std::size_t>(n), 0.0);
+  return true;
 }
 
 bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {

@@ -35,9 +35,27 @@ CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options) : CgAmgSolver(optio
 bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   ready_ = false;
   A_ = view_of(A);
+  nnz_ = A_.nnz();
   if (A_.n == 0) return ready_ = true;
   ready_ = amg_.setup(A_);
   return ready_;
+}
+
+LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+                                             Eigen::VectorXd& x, double rtol) {
+  if (!ready_ || A.rows() != A_.n || A.nonZeros() != nnz_) {
+    LinearSolveStats stats;
+    stats.message = "no preconditioner of this pattern to reuse";
+    return stats;
+  }
+  A_ = view_of(A);
+  if (A_.n > 0 && !amg_.rebind(A_)) {
+    ready_ = false;
+    LinearSolveStats stats;
+    stats.message = "the new matrix does not fit the old preconditioner";
+    return stats;
+  }
+  return solve(b, x, rtol);
 }
 
 LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {

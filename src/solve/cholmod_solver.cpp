@@ -131,4 +131,14 @@ LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   return stats;
 }
 
+LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+                                               Eigen::VectorXd& x, double rtol) {
+  if (factorized_ && A.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
+      A.nonZeros() == static_cast<Eigen::Index>(inner_.size()))
+    return solve(b, x, rtol);
+  LinearSolveStats stats;
+  stats.message = "no factorization of this pattern to reuse";
+  return stats;
+}
+
 }  // namespace meshmorph::detail

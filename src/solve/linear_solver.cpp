@@ -6,6 +6,13 @@
 
 namespace meshmorph {
 
+LinearSolveStats LinearSolver::solve_previous(const Eigen::SparseMatrix<double>& /*A*/, const Eigen::VectorXd& /*b*/,
+                                              Eigen::VectorXd& /*x*/, double /*rtol*/) {
+  LinearSolveStats stats;
+  stats.message = "no earlier set-up to reuse";
+  return stats;
+}
+
 LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n) {
   if (kind != LinearSolverKind::Auto) return kind;
   // Measured on projected 3D P1 tetrahedral Hessians (bench/linear_solver_bench.cpp, two

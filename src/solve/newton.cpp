@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/solve/newton.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -10,19 +11,21 @@
 namespace meshmorph {
 namespace {
 
-// Solves (H + τ·diag(s)) p = −g, s_i ≈ |H_ii|, for the smallest τ of the sequence τ₀, 4τ₀, 16τ₀, … (τ₀ = 0
-// first) for which the shifted matrix is positive definite and p a descent direction: a
-// Levenberg–Marquardt modification scaled per row, so rows stiffened by a large penalty and
-// soft interior rows are shifted alike. Returns the τ used, or a negative value on failure.
+// Solves (H + τ·diag(s)) p = −g, s_i ≈ |H_ii|, for the first τ of the sequence τ₀, 4τ₀ (1e-4 when τ₀ = 0),
+// then ×16, at most `attempts` of them and none above tau_max, for which the shifted matrix is
+// positive definite and p a descent direction: a Levenberg–Marquardt modification scaled per
+// row, so rows stiffened by a large penalty and soft interior rows are shifted alike. Each
+// attempt is a factorization; the short sequence bounds what an indefinite matrix costs.
+// Returns the τ used, or a negative value on failure.
 double newton_direction(LinearSolver& solver, Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, double tau0,
-                        double tau_max, double rtol, Eigen::VectorXd& p, NewtonStats& stats) {
+                        double tau_max, int attempts, double rtol, Eigen::VectorXd& p, NewtonStats& stats) {
   const Eigen::VectorXd diagonal = H.diagonal();
   // Row scales |H_ii|, at least 1e-3 of their mean so that zero rows (a projected Hessian's
   // null directions) are shifted too.
   const double mean = diagonal.size() > 0 && diagonal.cwiseAbs().mean() > 0.0 ? diagonal.cwiseAbs().mean() : 1.0;
   const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-3 * mean);
-  for (double tau = tau0;; tau = tau == 0.0 ? 1e-6 : 4.0 * tau) {
-    if (tau > tau_max) return -1.0;
+  double tau = tau0;
+  for (int k = 0; k < attempts && tau <= tau_max; ++k) {
     if (tau > 0.0)
       for (Eigen::Index i = 0; i < H.rows(); ++i)
         H.coeffRef(i, i) = diagonal[i] + tau * scale[i];
@@ -33,18 +36,24 @@ double newton_direction(LinearSolver& solver, Eigen::SparseMatrix<double>& H, co
       stats.krylov_iterations += s.iterations;
       if (s.ok && g.dot(p) < 0.0) return tau;
     }
+    tau = tau == 0.0 ? 1e-4 : (k == 0 ? 4.0 : 16.0) * tau;
   }
+  return -1.0;
 }
 
 }  // namespace
 
-NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options) {
+NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options, NewtonMemory* memory) {
   NewtonStats stats;
   Assembly a;
   Eigen::VectorXd p;
-  double tau_next = 0.0;  // shift to start from: a quarter of the last one that worked
+  NewtonMemory local;
+  NewtonMemory& m = memory ? *memory : local;
+  double& tau_next = m.shift;  // shift to start from: a quarter of the last one that worked
+  int projected_left = 0;      // steps to take with the projected Hessian after the exact one failed
   for (;;) {
-    bool exact = options.exact_first;
+    bool exact = options.exact_first && projected_left == 0;
+    projected_left = std::max(projected_left - 1, 0);
     problem.evaluate(exact ? HessianMode::Exact : HessianMode::Projected, a);
     stats.value = a.value;
     if (!std::isfinite(a.value)) {
@@ -55,22 +64,49 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       stats.converged = true;
       return stats;
     }
+    if (m.reusable) {  // decrement estimate with the factorization of the previous iterate
+      p.setZero(a.gradient.size());
+      const LinearSolveStats s = solver.solve_previous(a.hessian, -a.gradient, p, options.linear_rtol);
+      if (s.ok) {
+        ++stats.linear_solves;
+        stats.krylov_iterations += s.iterations;
+        const double estimate = -0.5 * a.gradient.dot(p);
+        if (estimate >= 0.0 && estimate <= options.decrement_tolerance) {
+          stats.decrement = estimate;
+          stats.converged = true;
+          return stats;
+        }
+      }
+    }
+    m.reusable = false;
     double tau = -1.0;
     if (exact) {
-      tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, options.linear_rtol, p, stats);
-      tau_next = tau > 1e-6 ? tau / 4.0 : 0.0;
+      tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, options.linear_rtol, p, stats);
+      tau_next = tau > 1e-4 ? tau / 4.0 : 0.0;
       if (tau < 0.0) {
-        log_detail("newton: the exact Hessian is far from positive definite; projected step");
+        // Far from a minimiser: projected steps for a while, then the exact Hessian again.
+        log_detail("newton: the exact Hessian is far from positive definite; projected steps");
         exact = false;
         tau_next = 0.0;
+        projected_left = 2;
         problem.evaluate(HessianMode::Projected, a);
       }
     }
-    if (!exact && newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, options.linear_rtol, p, stats) < 0.0) {
+    if (!exact && newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, 20, options.linear_rtol, p, stats) < 0.0) {
       stats.message = "no descent direction: the linear solver failed on the projected Hessian";
       return stats;
     }
+    const double previous_decrement = stats.decrement;
     stats.decrement = -0.5 * a.gradient.dot(p);
+    // An estimate at the next iterate is worth its solve where the next decrement, predicted
+    // by the quadratic model d_{k+1} = C d_k² fitted to the last two, should pass the test;
+    // when it is a back-substitution, also after the first step of a call (a subproblem
+    // changed a little from a solved one often needs that step only) and nearer the test.
+    const double ratio = stats.iterations > 0 && previous_decrement > 0.0 ? stats.decrement / previous_decrement : 1.0;
+    const double predicted = stats.decrement * std::min(1.0, ratio * ratio);
+    const double tol = options.decrement_tolerance;
+    m.reusable = exact && tau <= 1e-2 &&
+                 (predicted <= tol || (solver.cheap_previous() && (stats.iterations == 0 || predicted <= 1e3 * tol)));
     if (stats.decrement <= options.decrement_tolerance) {
       stats.converged = true;
       return stats;
@@ -95,6 +131,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
         return stats;
       }
       tau_next = std::max(1.0, 4.0 * tau);  // next time start from a more strongly shifted Hessian
+      m.reusable = false;
       continue;
     }
     problem.accept(p, alpha);
@@ -102,8 +139,10 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     ++stats.iterations;
     if (log_enabled(LogLevel::Detail)) {
       char line[200];
-      std::snprintf(line, sizeof line, "newton %d: %s step (shift %.2g), alpha %.3g, decrement %.3e, energy %.10g",
-                    stats.iterations, exact ? "exact" : "projected", exact ? tau : 0.0, alpha, stats.decrement, trial);
+      std::snprintf(line, sizeof line,
+                    "newton %d: %s step (shift %.2g), alpha %.3g, decrement %.3e, energy %.10g, %lld Krylov iterations so far",
+                    stats.iterations, exact ? "exact" : "projected", exact ? tau : 0.0, alpha, stats.decrement, trial,
+                    stats.krylov_iterations);
       log_detail(line);
     }
   }

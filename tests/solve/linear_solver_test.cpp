@@ -91,6 +91,29 @@ TEST(LinearSolver, IterativeSolveFromTheSolutionTakesNoIteration) {
   EXPECT_LE(again.relative_residual, 1e-10);
 }
 
+TEST(LinearSolver, SolvePreviousUsesTheOldSetUpForANewMatrixOfTheSamePattern) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 8, true, 1.0, 1.0);
+  const Eigen::SparseMatrix<double> B = 1.5 * A;  // same pattern, other values
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  std::vector<std::unique_ptr<LinearSolver>> solvers;
+  solvers.push_back(make_linear_solver(options_for(LinearSolverKind::Cholesky, 3), static_cast<std::size_t>(A.rows())));
+  solvers.push_back(multilevel_solver(3));
+  for (const auto& solver : solvers) {
+    SCOPED_TRACE(solver->name());
+    Eigen::VectorXd x;
+    EXPECT_FALSE(solver->solve_previous(B, b, x, 1e-10).ok);  // nothing to reuse yet
+    ASSERT_TRUE(solver->factorize(A));
+    const LinearSolveStats s = solver->solve_previous(B, b, x, 1e-10);
+    ASSERT_TRUE(s.ok) << s.message;
+    if (solver->name() == "cholmod")
+      EXPECT_LE(relative_residual(A, b, x), 1e-12);  // the old factor: x = A⁻¹b
+    else
+      EXPECT_LE(relative_residual(B, b, x), 1e-10);  // CG on the new matrix
+    const Eigen::SparseMatrix<double> C = test::stiffness_matrix(3, 7, true, 1.0, 1.0);  // other pattern
+    EXPECT_FALSE(solver->solve_previous(C, test::random_vector(C.rows()), x, 1e-10).ok);
+  }
+}
+
 // Mesh independence of smoothed aggregation: from n = 8 to n = 16 cells per side in 3D
 // (8x the unknowns, one more level) the CG iteration count at most doubles.
 TEST(LinearSolver, IterativeIterationsStayBoundedUnderRefinement) {

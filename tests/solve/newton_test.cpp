@@ -22,8 +22,15 @@ class DenseSolver final : public LinearSolver {
     x = llt_.solve(b);
     return {true, 0, 0.0, {}};
   }
+  LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  double rtol) override {
+    if (llt_.info() != Eigen::Success || llt_.rows() != A.rows()) return {};
+    ++reuses;
+    return solve(b, x, rtol);
+  }
+  bool cheap_previous() const override { return true; }
   std::string name() const override { return "dense"; }
-  int factorizations = 0;
+  int factorizations = 0, reuses = 0;
 
  private:
   Eigen::LLT<Eigen::MatrixXd> llt_;
@@ -76,6 +83,34 @@ TEST(Newton, ConvergesQuadraticallyOnAStronglyConvexProblem) {
   const Eigen::VectorXd g = (q.x.array().cube() - q.x.array()).matrix() + 2.0 * (q.x - c);
   EXPECT_LT(g.norm(), 1e-13);
   EXPECT_LE(s.iterations, 8);  // quadratic convergence: a handful of steps
+}
+
+TEST(Newton, ConfirmsConvergenceWithThePreviousFactorization) {
+  Eigen::VectorXd x0(3), c(3);
+  x0 << 2.0, -1.5, 0.7;
+  c << 1.5, -1.2, 1.1;
+  Quartic q(x0, 2.0, c, -10.0);
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-20;
+  NewtonMemory memory;
+  const NewtonStats first = newton(q, solver, o, &memory);
+  ASSERT_TRUE(first.converged) << first.message;
+  // Without the estimate the last iterate costs a factorization just to see that the
+  // decrement is small; with it, one back-substitution does.
+  EXPECT_EQ(solver.factorizations, first.iterations);
+  EXPECT_GT(solver.reuses, 0);
+  EXPECT_TRUE(memory.reusable);
+  // A second call on the solved problem: no factorization, no step.
+  const int factorizations = solver.factorizations;
+  const NewtonStats second = newton(q, solver, o, &memory);
+  EXPECT_TRUE(second.converged);
+  EXPECT_EQ(second.iterations, 0);
+  EXPECT_EQ(solver.factorizations, factorizations);
+  EXPECT_EQ(second.linear_solves, 1);
+  // The estimate never replaces the test: the gradient is still at the tolerance's level.
+  const Eigen::VectorXd g = (q.x.array().cube() - q.x.array()).matrix() + 2.0 * (q.x - c);
+  EXPECT_LT(g.norm(), 1e-9);
 }
 
 TEST(Newton, FallsBackToTheProjectedHessianWhereTheExactOneIsIndefinite) {

@@ -56,6 +56,17 @@ class LinearSolver {
   /// `rtol` ≤ 0 means the options' rtol. Iterative: stops with ok = false when it meets
   /// negative curvature (A not SPD) or reaches max_iterations.
   virtual LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) = 0;
+  /// Solves A x = b, at least approximately, with the set-up of the last successful
+  /// factorize(), made for an earlier matrix of A's pattern: the direct backend
+  /// back-substitutes with the old factor, the iterative one runs CG on A (kept as the matrix
+  /// of later solves) with the old preconditioner. A cheap test between Newton steps of
+  /// whether a new factorization is needed. ok = false when there is no such set-up (the
+  /// default for backends that do not offer it).
+  virtual LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+                                          Eigen::VectorXd& x, double rtol = 0.0);
+  /// Whether solve_previous() costs little next to factorize() (a back-substitution, not
+  /// a Krylov solve).
+  virtual bool cheap_previous() const { return false; }
   /// "cholmod" or "cg-amg".
   virtual std::string name() const = 0;
 };

@@ -34,10 +34,11 @@ struct NewtonOptions {
   double backtrack = 0.5;    ///< step reduction per rejected trial
   double min_step = 1e-12;   ///< smallest α tried before giving up
   /// Step with the exact Hessian H, modified where it is not positive definite to
-  /// H + τ|diag H| with the smallest τ ∈ {0, 1e-6·4^k} ≤ max_shift that makes it so (Nocedal–
-  /// Wright §3.4; τ starts near the last one that worked): quadratic convergence near the
-  /// solution, where projected-Hessian Newton converges only linearly (DESIGN §6). Otherwise,
-  /// or when false, the step of the SPD-projected Hessian.
+  /// H + τ|diag H| with the first τ of a short increasing sequence (five factorizations at
+  /// most, τ ≤ max_shift, starting near the last τ that worked; Nocedal–Wright §3.4) that
+  /// makes it so: quadratic convergence near the solution, where projected-Hessian Newton
+  /// converges only linearly (DESIGN §6). Otherwise the step of the SPD-projected Hessian, and
+  /// the two steps after it too; always that step when false.
   bool exact_first = true;
   double max_shift = 1.0;
   double linear_rtol = 1e-8;  ///< relative residual of iterative linear solves
@@ -46,15 +47,31 @@ struct NewtonOptions {
 struct NewtonStats {
   bool converged = false;     ///< the decrement test passed
   int iterations = 0;         ///< accepted Newton steps
-  int linear_solves = 0;
+  int linear_solves = 0;       ///< including the back-substitutions of decrement estimates
   long long krylov_iterations = 0;
   double value = 0.0;         ///< energy at the final iterate
   double decrement = 0.0;     ///< ½ gᵀH⁻¹g at the last check
   std::string message;        ///< why it stopped without converging
 };
 
+/// What one newton() call leaves for the next on a related problem (the same unknowns, with
+/// changed parameters, e.g. the next augmented-Lagrangian subproblem).
+struct NewtonMemory {
+  double shift = 0.0;          ///< τ to start from
+  /// Whether the solver holds a factorization of a Hessian with at most a small shift: then
+  /// the decrement test of the first iterate is tried with it before a new factorization.
+  bool reusable = false;
+};
+
 /// Damped Newton with backtracking Armijo line search: never accepts a trial point whose
 /// energy is +∞ or that is not admissible. Starts from the problem's current iterate.
-NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options);
+///
+/// Before factorizing at an iterate, the decrement is estimated with the factorization of the
+/// previous iterate (one back-substitution; LinearSolver::solve_previous): where that
+/// already passes the test, Newton stops without a new factorization. Near a solution, and
+/// after a small change of the problem's parameters, this saves the factorization that would
+/// only confirm convergence. `memory` (optional) carries τ and this factorization between calls.
+NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options,
+                   NewtonMemory* memory = nullptr);
 
 }  // namespace meshmorph

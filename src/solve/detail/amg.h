@@ -31,6 +31,10 @@ class AmgHierarchy {
   /// positive definite (a diagonal entry ≤ 0, or a Cholesky pivot ≤ 0 of the coarsest
   /// Galerkin operator).
   bool setup(const SparseView& A);
+  /// Makes a new matrix of the finest level's pattern the finest operator, keeping the coarse
+  /// levels built for the old one (a cheaper, slightly weaker preconditioner). False when A
+  /// has a diagonal entry ≤ 0 or there is no hierarchy of its size.
+  bool rebind(const SparseView& A);
   /// z = M⁻¹ r, one V-cycle from a zero initial guess (z and r must not alias).
   void apply(const double* r, double* z);
 
@@ -52,6 +56,7 @@ class AmgHierarchy {
     int block = 1;
     std::vector<double> x, b, r, d;
   };
+  bool prepare_level(Level& L);  // inverse diagonal (false if an entry is ≤ 0), ρ estimate, work vectors
   bool build_level(std::size_t l, std::vector<double>& weights);
   void smooth(Level& L, bool zero_guess);
   void cycle(std::size_t l);

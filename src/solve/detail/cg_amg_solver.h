@@ -16,6 +16,8 @@ class CgAmgSolver final : public LinearSolver {
 
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
   LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  double rtol = 0.0) override;
   std::string name() const override { return "cg-amg"; }
 
   const AmgHierarchy& hierarchy() const { return amg_; }
@@ -23,7 +25,8 @@ class CgAmgSolver final : public LinearSolver {
  private:
   LinearSolverOptions options_;
   AmgHierarchy amg_;
-  SparseView A_{};
+  SparseView A_{};  // the matrix of the solves: it must outlive them (see LinearSolver)
+  std::int64_t nnz_ = 0;  // A_'s at factorize(), read without touching A_ (which may be gone)
   bool ready_ = false;
   Eigen::VectorXd r_, z_, p_, q_;
 };

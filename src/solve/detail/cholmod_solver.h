@@ -35,6 +35,9 @@ class CholmodSolver final : public LinearSolver {
 
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
   LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  double rtol = 0.0) override;
+  bool cheap_previous() const override { return true; }
   std::string name() const override { return "cholmod"; }
 
   /// The same on a raw view (the coarse level of the multigrid hierarchy).
