@@ -5,7 +5,8 @@
 // Groups: "inner" (1, the three hole circles), "outer" (2), "domain" (3).
 If (!Exists(h_in)) h_in = 0.14; EndIf
 If (!Exists(h_out)) h_out = 0.6; EndIf
-R = 5; d = 1.5; r = 0.5;
+If (!Exists(R)) R = 5; EndIf
+d = 1.5; r = 0.5;
 Point(1) = {0, 0, 0, h_out};
 Point(2) = {R, 0, 0, h_out}; Point(3) = {0, R, 0, h_out};
 Point(4) = {-R, 0, 0, h_out}; Point(5) = {0, -R, 0, h_out};

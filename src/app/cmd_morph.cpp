@@ -116,6 +116,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   report.method = settings.method == "morph" ? "morph" : "morph/" + settings.method;
   report.case_file = a.case_file;
   Eigen::MatrixXd x = input.x;
+  long long krylov = 0;  // CG iterations of the iterative backend (printed, not in the report)
   if (settings.method == "morph") {
     Morpher morpher(input, topology, bc, settings.morph);
     IterationCounts counts;
@@ -126,6 +127,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       counts.nonlinear += r.nonlinear;
       counts.newton += r.newton;
       counts.linear += r.linear;
+      krylov += r.krylov;
       for (const MorphIteration& h : r.history)
         report.history.push_back({{"step", h.step}, {"outer", h.outer}, {"constraint_norm", h.constraint_norm},
                                   {"boundary_error_max", h.boundary_error_max}, {"min_quality", h.min_quality},
@@ -192,7 +194,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   if (report.iterations)
     out << "work     " << report.iterations->outer << " AL iterations, " << report.iterations->nonlinear
         << " nonlinear solves, " << report.iterations->newton << " Newton steps, " << report.iterations->linear
-        << " linear solves\n";
+        << " linear solves" << (krylov > 0 ? " (" + std::to_string(krylov) + " CG iterations)" : std::string()) << "\n";
   char line[160];
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f; inverted %zu\n", q.min_quality, q.mean_quality,
                 q.inverted_elements);

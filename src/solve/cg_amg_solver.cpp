@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "solve/detail/cg_amg_solver.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <omp.h>
@@ -34,11 +35,31 @@ CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options) : CgAmgSolver(optio
 
 bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   ready_ = false;
+  const bool same_pattern = built_ && A.rows() == A_.n && A.nonZeros() == nnz_;
   A_ = view_of(A);
   nnz_ = A_.nnz();
   if (A_.n == 0) return ready_ = true;
-  ready_ = amg_.setup(A_);
+  // The coarse levels of the last full set-up serve matrices of the same pattern until CG
+  // needs twice the iterations per digit that it needed right after that set-up (Newton
+  // steps change the Hessian little; a jump of the penalty or a failure triggers a rebuild).
+  if (same_pattern && !rebuild_ && amg_.rebind(A_)) return ready_ = true;
+  built_ = ready_ = amg_.setup(A_);
+  rebuild_ = false;
+  base_cost_ = -1.0;
   return ready_;
+}
+
+void CgAmgSolver::track(const LinearSolveStats& stats) {
+  if (!stats.ok) {
+    rebuild_ = true;
+    return;
+  }
+  if (stats.iterations < 3 || !(stats.relative_residual > 0.0)) return;
+  const double cost = stats.iterations / std::max(1.0, -std::log10(stats.relative_residual));  // iterations per digit
+  if (base_cost_ < 0.0)
+    base_cost_ = cost;
+  else if (cost > 2.0 * base_cost_ + 1.0)
+    rebuild_ = true;
 }
 
 LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
@@ -59,6 +80,12 @@ LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& 
 }
 
 LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+  const LinearSolveStats stats = cg(b, x, rtol);
+  track(stats);
+  return stats;
+}
+
+LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
   LinearSolveStats stats;
   if (!ready_) {
     stats.message = "matrix not positive definite";

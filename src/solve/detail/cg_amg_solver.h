@@ -23,11 +23,16 @@ class CgAmgSolver final : public LinearSolver {
   const AmgHierarchy& hierarchy() const { return amg_; }
 
  private:
+  LinearSolveStats cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol);
+  void track(const LinearSolveStats& stats);  // decides when the hierarchy is rebuilt
   LinearSolverOptions options_;
   AmgHierarchy amg_;
   SparseView A_{};  // the matrix of the solves: it must outlive them (see LinearSolver)
   std::int64_t nnz_ = 0;  // A_'s at factorize(), read without touching A_ (which may be gone)
   bool ready_ = false;
+  bool built_ = false;     // a full set-up exists (for A_'s pattern)
+  bool rebuild_ = false;   // the next factorize() does a full set-up
+  double base_cost_ = -1;  // CG iterations per digit right after the last full set-up
   Eigen::VectorXd r_, z_, p_, q_;
 };
 
