@@ -114,6 +114,27 @@ TEST(LinearSolver, SolvePreviousUsesTheOldSetUpForANewMatrixOfTheSamePattern) {
   }
 }
 
+TEST(LinearSolver, IterativeSolvesStayAccurateWhenTheHierarchyIsReused) {
+  // Newton's matrices change from step to step with the same pattern: the solver keeps the
+  // coarse levels and must still reach the tolerance, also for a penalty-like jump of a few
+  // rows by 1e6 (which makes it rebuild once CG slows down).
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 8, true, 1.0, 1.0);
+  Eigen::SparseMatrix<double> B = A;
+  for (Eigen::Index i = 0; i < 30; ++i) B.coeffRef(i, i) *= 1.0 + 0.1 * static_cast<double>(i % 3);
+  Eigen::SparseMatrix<double> C = B;
+  for (Eigen::Index i = 0; i < 24; ++i) C.coeffRef(i, i) *= 1e6;
+  auto solver = multilevel_solver(3);
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  for (const Eigen::SparseMatrix<double>* M : std::vector<const Eigen::SparseMatrix<double>*>{&A, &B, &C, &C, &A}) {
+    ASSERT_TRUE(solver->factorize(*M));
+    Eigen::VectorXd x;
+    const LinearSolveStats s = solver->solve(b, x, 1e-10);
+    ASSERT_TRUE(s.ok) << s.message;
+    EXPECT_LE(relative_residual(*M, b, x), 1e-10);
+    EXPECT_LT(s.iterations, 200);
+  }
+}
+
 // Mesh independence of smoothed aggregation: from n = 8 to n = 16 cells per side in 3D
 // (8x the unknowns, one more level) the CG iteration count at most doubles.
 TEST(LinearSolver, IterativeIterationsStayBoundedUnderRefinement) {
