@@ -56,16 +56,29 @@ void read_msh41_entities(MshState& s) {
   }
 }
 
-void read_msh41_nodes(MshState& s) {
+// The header shared by $Nodes and $Elements: numBlocks numItems minTag maxTag, the counts
+// checked against the bytes left (at least `block_bytes` per block, `item_bytes` per item).
+struct SectionHeader {
+  std::uint64_t n_blocks = 0, n_items = 0;
+  std::size_t n_items_at = 0;  // offset of numItems, for the final count check
+};
+
+SectionHeader read_section_header(MshState& s, const std::string& item, int item_bytes_binary, int item_bytes_text) {
   begin_binary(s);
+  SectionHeader h;
+  h.n_blocks = count(s, ("number of " + item + " blocks").c_str());
+  s.check_count(h.n_blocks, s.binary ? 20 : 8, here(s));
+  h.n_items = count(s, ("number of " + item + "s").c_str());
+  h.n_items_at = here(s);
+  s.check_count(h.n_items, s.binary ? item_bytes_binary : item_bytes_text, h.n_items_at);
+  count(s, ("minimum " + item + " tag").c_str());
+  count(s, ("maximum " + item + " tag").c_str());
+  return h;
+}
+
+void read_msh41_nodes(MshState& s) {
+  const auto [n_blocks, n_nodes, n_nodes_at] = read_section_header(s, "node", 32, 8);
   Cursor& c = s.cur;
-  const std::uint64_t n_blocks = count(s, "number of node blocks");
-  s.check_count(n_blocks, s.binary ? 20 : 8, here(s));
-  const std::uint64_t n_nodes = count(s, "number of nodes");
-  const std::size_t n_nodes_at = here(s);
-  s.check_count(n_nodes, s.binary ? 32 : 8, n_nodes_at);
-  count(s, "minimum node tag");
-  count(s, "maximum node tag");
   s.builder.tags.reserve(n_nodes);
   s.builder.xyz.reserve(3 * n_nodes);
   std::uint64_t seen = 0;
@@ -101,15 +114,8 @@ void read_msh41_nodes(MshState& s) {
 }
 
 void read_msh41_elements(MshState& s) {
-  begin_binary(s);
+  const auto [n_blocks, n_elements, n_elements_at] = read_section_header(s, "element", 16, 4);
   Cursor& c = s.cur;
-  const std::uint64_t n_blocks = count(s, "number of element blocks");
-  s.check_count(n_blocks, s.binary ? 20 : 8, here(s));
-  const std::uint64_t n_elements = count(s, "number of elements");
-  const std::size_t n_elements_at = here(s);
-  s.check_count(n_elements, s.binary ? 16 : 4, n_elements_at);
-  count(s, "minimum element tag");
-  count(s, "maximum element tag");
   std::uint64_t seen = 0;
   std::vector<std::int64_t> tags;
   for (std::uint64_t b = 0; b < n_blocks; ++b) {
