@@ -51,7 +51,7 @@ bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
 
 void CgAmgSolver::track(const LinearSolveStats& stats) {
   if (!stats.ok) {
-    rebuild_ = true;
+    rebuild_ = rebuild_ || !stats.indefinite;  // an indefinite matrix is no fault of the preconditioner
     return;
   }
   if (stats.iterations < 3 || !(stats.relative_residual > 0.0)) return;
@@ -121,6 +121,7 @@ LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, d
       const double pq = dot(p_.data(), q_.data(), n, threads);
       ++stats.iterations;
       if (!(pq > 0.0)) {
+        stats.indefinite = true;
         stats.message = "matrix not positive definite";
         stats.relative_residual = r_norm / b_norm;
         return stats;

@@ -50,10 +50,8 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
   NewtonMemory local;
   NewtonMemory& m = memory ? *memory : local;
   double& tau_next = m.shift;  // shift to start from: a quarter of the last one that worked
-  int projected_left = 0;      // steps to take with the projected Hessian after the exact one failed
   for (;;) {
-    bool exact = options.exact_first && projected_left == 0;
-    projected_left = std::max(projected_left - 1, 0);
+    bool exact = options.exact_first && m.exact_ready;
     problem.evaluate(exact ? HessianMode::Exact : HessianMode::Projected, a);
     stats.value = a.value;
     if (!std::isfinite(a.value)) {
@@ -64,50 +62,55 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       stats.converged = true;
       return stats;
     }
-    if (m.reusable) {  // decrement estimate with the factorization of the previous iterate
+    const double tol = options.decrement_tolerance;
+    // The factorization of an earlier iterate first, as CG preconditioner: its solution
+    // either passes the decrement test (a subproblem changed a little from a solved one) or
+    // serves as this step's direction, and a new factorization is due only when it fails.
+    bool reused = false;
+    if (m.reusable) {
       p.setZero(a.gradient.size());
       const LinearSolveStats s = solver.solve_previous(a.hessian, -a.gradient, p, options.linear_rtol);
+      ++stats.linear_solves;
+      stats.krylov_iterations += s.iterations;
       if (s.ok) {
-        ++stats.linear_solves;
-        stats.krylov_iterations += s.iterations;
         const double estimate = -0.5 * a.gradient.dot(p);
-        if (estimate >= 0.0 && estimate <= options.decrement_tolerance) {
+        if (estimate >= 0.0 && estimate <= tol) {
           stats.decrement = estimate;
           stats.converged = true;
           return stats;
         }
+        reused = estimate > 0.0;
       }
     }
-    m.reusable = false;
-    double tau = -1.0;
-    if (exact) {
+    m.reusable = reused;
+    double tau = reused ? 0.0 : -1.0;
+    if (exact && !reused) {
       tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, options.linear_rtol, p, stats);
       tau_next = tau > 1e-4 ? tau / 4.0 : 0.0;
       if (tau < 0.0) {
-        // Far from a minimiser: projected steps for a while, then the exact Hessian again.
+        // Far from a minimiser: projected steps until one is taken in full.
         log_detail("newton: the exact Hessian is far from positive definite; projected steps");
         exact = false;
+        m.exact_ready = false;
         tau_next = 0.0;
-        projected_left = 2;
         problem.evaluate(HessianMode::Projected, a);
       }
     }
-    if (!exact && newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, 20, options.linear_rtol, p, stats) < 0.0) {
+    if (!exact && !reused &&
+        newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, 20, options.linear_rtol, p, stats) < 0.0) {
       stats.message = "no descent direction: the linear solver failed on the projected Hessian";
       return stats;
     }
     const double previous_decrement = stats.decrement;
     stats.decrement = -0.5 * a.gradient.dot(p);
-    // An estimate at the next iterate is worth its solve where the next decrement, predicted
-    // by the quadratic model d_{k+1} = C d_k² fitted to the last two, should pass the test;
-    // when it is a back-substitution, also after the first step of a call (a subproblem
-    // changed a little from a solved one often needs that step only) and nearer the test.
+    // The factorization is tried again at the next iterate when that is cheap (a few
+    // iterations preconditioned by a direct factor); a multigrid set-up only where the
+    // decrement, predicted by the quadratic model d_{k+1} = C d_k² fitted to the last two,
+    // should pass the test.
     const double ratio = stats.iterations > 0 && previous_decrement > 0.0 ? stats.decrement / previous_decrement : 1.0;
     const double predicted = stats.decrement * std::min(1.0, ratio * ratio);
-    const double tol = options.decrement_tolerance;
-    m.reusable = exact && tau <= 1e-2 &&
-                 (predicted <= tol || (solver.cheap_previous() && (stats.iterations == 0 || predicted <= 1e3 * tol)));
-    if (stats.decrement <= options.decrement_tolerance) {
+    m.reusable = tau <= 1e-2 && (solver.cheap_previous() || predicted <= tol);
+    if (stats.decrement <= tol) {
       stats.converged = true;
       return stats;
     }
@@ -135,6 +138,8 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       continue;
     }
     problem.accept(p, alpha);
+    // A full projected step: near enough a minimiser for the exact Hessian.
+    if (!exact && alpha == 1.0) m.exact_ready = true;
     stats.value = trial;
     ++stats.iterations;
     if (log_enabled(LogLevel::Detail)) {

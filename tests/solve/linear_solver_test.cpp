@@ -105,10 +105,7 @@ TEST(LinearSolver, SolvePreviousUsesTheOldSetUpForANewMatrixOfTheSamePattern) {
     ASSERT_TRUE(solver->factorize(A));
     const LinearSolveStats s = solver->solve_previous(B, b, x, 1e-10);
     ASSERT_TRUE(s.ok) << s.message;
-    if (solver->name() == "cholmod")
-      EXPECT_LE(relative_residual(A, b, x), 1e-12);  // the old factor: x = A⁻¹b
-    else
-      EXPECT_LE(relative_residual(B, b, x), 1e-10);  // CG on the new matrix
+    EXPECT_LE(relative_residual(B, b, x), 1e-10);  // CG on the new matrix, the old set-up preconditioning
     const Eigen::SparseMatrix<double> C = test::stiffness_matrix(3, 7, true, 1.0, 1.0);  // other pattern
     EXPECT_FALSE(solver->solve_previous(C, test::random_vector(C.rows()), x, 1e-10).ok);
   }

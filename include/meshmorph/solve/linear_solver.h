@@ -34,6 +34,7 @@ struct LinearSolveStats {
   bool ok = false;           ///< false: not positive definite, or no convergence
   int iterations = 0;        ///< CG iterations (0 for a direct solve)
   double relative_residual = 0.0;
+  bool indefinite = false;   ///< stopped on negative curvature: A is not positive definite
   std::string message;       ///< why it failed, empty when ok
 };
 
@@ -56,16 +57,17 @@ class LinearSolver {
   /// `rtol` ≤ 0 means the options' rtol. Iterative: stops with ok = false when it meets
   /// negative curvature (A not SPD) or reaches max_iterations.
   virtual LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) = 0;
-  /// Solves A x = b, at least approximately, with the set-up of the last successful
-  /// factorize(), made for an earlier matrix of A's pattern: the direct backend
-  /// back-substitutes with the old factor, the iterative one runs CG on A (kept as the matrix
-  /// of later solves) with the old preconditioner. A cheap test between Newton steps of
-  /// whether a new factorization is needed. ok = false when there is no such set-up (the
-  /// default for backends that do not offer it).
+  /// Solves A x = b with the set-up of the last successful factorize(), made for an earlier
+  /// matrix of A's pattern, as the preconditioner of conjugate gradients on A (the iterative
+  /// backend keeps A as the matrix of later solves). Between Newton steps this replaces a new
+  /// factorization while the old one still preconditions well. `x` is the initial guess as
+  /// in solve(). ok = false when there is no
+  /// such set-up (the default for backends that do not offer it), when A shows negative
+  /// curvature, or when the tolerance is not reached within the backend's budget.
   virtual LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                           Eigen::VectorXd& x, double rtol = 0.0);
-  /// Whether solve_previous() costs little next to factorize() (a back-substitution, not
-  /// a Krylov solve).
+  /// Whether solve_previous() costs little next to factorize() (a few preconditioned
+  /// iterations with a direct factor, not a multigrid-preconditioned Krylov solve).
   virtual bool cheap_previous() const { return false; }
   /// "cholmod" or "cg-amg".
   virtual std::string name() const = 0;

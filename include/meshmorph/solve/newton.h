@@ -41,13 +41,15 @@ struct NewtonOptions {
   /// the two steps after it too; always that step when false.
   bool exact_first = true;
   double max_shift = 1.0;
-  double linear_rtol = 1e-8;  ///< relative residual of iterative linear solves
+  /// Relative residual of Krylov solves (also of those with an earlier factorization): the
+  /// forcing term of inexact Newton, and the accuracy of the decrement test.
+  double linear_rtol = 1e-8;
 };
 
 struct NewtonStats {
   bool converged = false;     ///< the decrement test passed
   int iterations = 0;         ///< accepted Newton steps
-  int linear_solves = 0;       ///< including the back-substitutions of decrement estimates
+  int linear_solves = 0;       ///< including the solves with an earlier factorization
   long long krylov_iterations = 0;
   double value = 0.0;         ///< energy at the final iterate
   double decrement = 0.0;     ///< ½ gᵀH⁻¹g at the last check
@@ -58,19 +60,24 @@ struct NewtonStats {
 /// changed parameters, e.g. the next augmented-Lagrangian subproblem).
 struct NewtonMemory {
   double shift = 0.0;          ///< τ to start from
-  /// Whether the solver holds a factorization of a Hessian with at most a small shift: then
-  /// the decrement test of the first iterate is tried with it before a new factorization.
+  /// Whether the solver holds a factorization of a Hessian with at most a small shift, to be
+  /// tried at the next iterate before a new factorization.
   bool reusable = false;
+  /// Whether the exact Hessian is worth trying (NewtonOptions::exact_first): set by a full
+  /// projected step (α = 1), cleared when no small shift makes the exact Hessian positive
+  /// definite. Far from a minimiser the projected Hessian's steps go much further.
+  bool exact_ready = false;
 };
 
 /// Damped Newton with backtracking Armijo line search: never accepts a trial point whose
 /// energy is +∞ or that is not admissible. Starts from the problem's current iterate.
 ///
-/// Before factorizing at an iterate, the decrement is estimated with the factorization of the
-/// previous iterate (one back-substitution; LinearSolver::solve_previous): where that
-/// already passes the test, Newton stops without a new factorization. Near a solution, and
-/// after a small change of the problem's parameters, this saves the factorization that would
-/// only confirm convergence. `memory` (optional) carries τ and this factorization between calls.
+/// Before factorizing at an iterate, Newton solves with the factorization of an earlier
+/// iterate as CG preconditioner (LinearSolver::solve_previous): where that solution passes the
+/// decrement test, Newton stops; otherwise it is the step, and a new factorization is due
+/// only when the old one no longer preconditions well. Near a solution, and after a small
+/// change of the problem's parameters, this saves most factorizations. `memory` (optional)
+/// carries τ, the factorization and whether to try the exact Hessian between calls.
 NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options,
                    NewtonMemory* memory = nullptr);
 
