@@ -116,7 +116,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   report.method = settings.method == "morph" ? "morph" : "morph/" + settings.method;
   report.case_file = a.case_file;
   Eigen::MatrixXd x = input.x;
-  long long krylov = 0;  // CG iterations of the iterative backend (printed, not in the report)
+  long long krylov = 0;  // CG iterations, also those preconditioned by a Cholesky factor (printed, not in the report)
   if (settings.method == "morph") {
     Morpher morpher(input, topology, bc, settings.morph);
     IterationCounts counts;

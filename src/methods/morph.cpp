@@ -76,7 +76,7 @@ class MorphImpl final : public Morpher::Impl {
       // quarter of the iterations of eight and (measured on the §5.2 shells) neither more
       // Newton steps nor another AL iteration; a premature decrement test only leaves the
       // rest to the next subproblem. The last ones, at δ*, decide the result: tight solves.
-      no.linear_rtol = delta > delta_star * (1 + 1e-12) ? 1e-2 : 1e-8;
+      no.forcing = delta > delta_star * (1 + 1e-12) ? 1e-2 : 0.0;
       bool newton_ok = true;
       std::string newton_message;
       for (int update = 0; update <= options_.max_weight_updates; ++update) {

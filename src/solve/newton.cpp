@@ -63,13 +63,15 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       return stats;
     }
     const double tol = options.decrement_tolerance;
+    const double rtol = std::max(options.forcing, options.linear_rtol);
+    const long long krylov_before = stats.krylov_iterations;
     // The factorization of an earlier iterate first, as CG preconditioner: its solution
     // either passes the decrement test (a subproblem changed a little from a solved one) or
     // serves as this step's direction, and a new factorization is due only when it fails.
     bool reused = false;
     if (m.reusable) {
       p.setZero(a.gradient.size());
-      const LinearSolveStats s = solver.solve_previous(a.hessian, -a.gradient, p, options.linear_rtol);
+      const LinearSolveStats s = solver.solve_previous(a.hessian, -a.gradient, p, rtol);
       ++stats.linear_solves;
       stats.krylov_iterations += s.iterations;
       if (s.ok) {
@@ -85,7 +87,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     m.reusable = reused;
     double tau = reused ? 0.0 : -1.0;
     if (exact && !reused) {
-      tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, options.linear_rtol, p, stats);
+      tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, rtol, p, stats);
       tau_next = tau > 1e-4 ? tau / 4.0 : 0.0;
       if (tau < 0.0) {
         // Far from a minimiser: projected steps until one is taken in full.
@@ -97,7 +99,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       }
     }
     if (!exact && !reused &&
-        newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, 20, options.linear_rtol, p, stats) < 0.0) {
+        newton_direction(solver, a.hessian, a.gradient, 0.0, 1e12, 20, rtol, p, stats) < 0.0) {
       stats.message = "no descent direction: the linear solver failed on the projected Hessian";
       return stats;
     }
@@ -120,13 +122,32 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     }
     // Backtracking Armijo (c = options.armijo) on ∇E(x_k); never past a non-finite energy or
     // an inadmissible point.
-    double alpha = 1.0;
-    const double slope = a.gradient.dot(p);
-    double trial = problem.trial_value(p, alpha);
-    while (!(std::isfinite(trial) && trial <= a.value + options.armijo * alpha * slope && problem.admissible(p, alpha))) {
-      alpha *= options.backtrack;
-      if (alpha < options.min_step) break;
+    double alpha = 1.0, trial = 0.0;
+    const auto line_search = [&] {
+      alpha = 1.0;
+      const double slope = a.gradient.dot(p);
       trial = problem.trial_value(p, alpha);
+      while (!(std::isfinite(trial) && trial <= a.value + options.armijo * alpha * slope && problem.admissible(p, alpha))) {
+        alpha *= options.backtrack;
+        if (alpha < options.min_step) break;
+        trial = problem.trial_value(p, alpha);
+      }
+    };
+    line_search();
+    // A short step after an inexact solve may be the solve's fault (stiff, thin elements
+    // whose modes CG has not resolved yet): solve on to linear_rtol and search again.
+    if (alpha < 0.1 && rtol > options.linear_rtol && stats.krylov_iterations > krylov_before) {
+      const Eigen::VectorXd loose = p;
+      const LinearSolveStats s = reused ? solver.solve_previous(a.hessian, -a.gradient, p, options.linear_rtol)
+                                        : solver.solve(-a.gradient, p, options.linear_rtol);
+      ++stats.linear_solves;
+      stats.krylov_iterations += s.iterations;
+      if (s.ok && a.gradient.dot(p) < 0.0) {
+        stats.decrement = -0.5 * a.gradient.dot(p);
+        line_search();
+      } else {
+        p = loose;
+      }
     }
     if (alpha < options.min_step) {
       if (!exact) {

@@ -41,9 +41,12 @@ struct NewtonOptions {
   /// the two steps after it too; always that step when false.
   bool exact_first = true;
   double max_shift = 1.0;
-  /// Relative residual of Krylov solves (also of those with an earlier factorization): the
-  /// forcing term of inexact Newton, and the accuracy of the decrement test.
+  /// Relative residual of Krylov solves (also of those with an earlier factorization).
   double linear_rtol = 1e-8;
+  /// Inexact Newton where > linear_rtol: Krylov solves stop at this relative residual (the
+  /// decrement test is then as loose), and a step whose line search ends below α = 0.1 is
+  /// solved on to linear_rtol and searched again.
+  double forcing = 0.0;
 };
 
 struct NewtonStats {
