@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include <omp.h>
 
@@ -18,6 +20,10 @@ constexpr double k_inf = std::numeric_limits<double>::infinity();
 // Cells per partial sum of the value. Fixed, so the summation order (chunk sums in cell order,
 // then the chunks in order) and therefore the value are the same for every thread count.
 constexpr std::size_t k_chunk = 1024;
+// Cells per patch of the element sweep (detail::patch_cells). A patch's Hessian entries stay in
+// cache while its cells are scattered one after another; the patches must still be many per
+// colour for the threads to share them.
+constexpr int k_patch_size = 64;
 
 int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
@@ -27,10 +33,36 @@ double chunked_total(const std::vector<double>& chunk_sums) {
   return total;
 }
 
+// The element kernel for N nodes per cell: fixed-size for linear simplices (N = d + 1), the
+// general kernel for N = Eigen::Dynamic.
+template <int d, int N>
+struct Kernel {
+  static constexpr bool fixed = N != Eigen::Dynamic;
+  using Nodal = std::conditional_t<fixed, Eigen::Matrix<double, d, N>, detail::NodalMatrix<d>>;
+  using Scratch = std::conditional_t<fixed, detail::FixedElementScratch<d, N>, detail::ElementScratch<d>>;
+
+  static double eval(const Metric<d>& metric, const BlockTargets<d>& bt, std::size_t c, const Eigen::MatrixXd& x,
+                     const std::int32_t* nodes, int n, Want want, HessianMode mode, Nodal& X, Scratch& s) {
+    if constexpr (!fixed) X.resize(d, n);
+    for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+    if constexpr (fixed)
+      return detail::element_kernel_fixed<d, N>(metric, *bt.table, bt.cell(c), X, want, mode, s);
+    else
+      return detail::element_kernel<d>(metric, *bt.table, bt.cell(c), X, want, mode, s);
+  }
+};
+
+// E_e of one cell of a block with n nodes per cell, through the kernel that assemble() uses
+// for it, so that value() and assemble() agree bit for bit.
 template <int d>
-void gather(const Eigen::MatrixXd& x, const std::int32_t* nodes, int n, detail::NodalMatrix<d>& X) {
-  X.resize(d, n);
-  for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+double cell_value(const Metric<d>& metric, const BlockTargets<d>& bt, std::size_t c, const Eigen::MatrixXd& x,
+                  const std::int32_t* nodes, int n, detail::NodalMatrix<d>& X, detail::ElementScratch<d>& s) {
+  if (n == d + 1) {
+    typename Kernel<d, d + 1>::Nodal Xf;
+    typename Kernel<d, d + 1>::Scratch unused;  // Want::Value fills nothing
+    return Kernel<d, d + 1>::eval(metric, bt, c, x, nodes, n, Want::Value, HessianMode::Exact, Xf, unused);
+  }
+  return Kernel<d, Eigen::Dynamic>::eval(metric, bt, c, x, nodes, n, Want::Value, HessianMode::Exact, X, s);
 }
 
 }  // namespace
@@ -56,7 +88,10 @@ EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, 
   for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
     const CellBlock& block = mesh.cells[bi];
     BlockPlan& plan = blocks_[bi];
-    detail::color_cells(block, topology, topology.block_offset[bi], plan.color_offset, plan.order);
+    detail::CellPatches patches = detail::patch_cells(block, topology, topology.block_offset[bi], k_patch_size);
+    plan.color_offset = std::move(patches.color_offset);
+    plan.patch_offset = std::move(patches.patch_offset);
+    plan.order = std::move(patches.order);
     plan.scatter = detail::scatter_offsets(block, topology, pattern);
   }
 }
@@ -94,51 +129,70 @@ void EnergyAssembler<d>::assemble(const Metric<d>& metric, const Eigen::MatrixXd
 #pragma omp for schedule(static)
       for (std::int64_t i = 0; i < nnz; ++i) values[i] = 0.0;
     }
-    detail::ElementScratch<d> scratch;
-    detail::NodalMatrix<d> X;
     std::size_t cell_base = 0;
-    for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+    // Sweeps the cells of block bi, patch colour by patch colour, with the kernel for N nodes per cell.
+    auto sweep = [&](std::size_t bi, auto nodes_per_cell) {
+      constexpr int N = decltype(nodes_per_cell)::value;
+      constexpr int max_dofs = d * (N == Eigen::Dynamic ? detail::k_max_nodes : N);
+      using K = Kernel<d, N>;
       const CellBlock& block = mesh_->cells[bi];
       const BlockTargets<d>& bt = targets_->blocks[bi];
       const BlockPlan& plan = blocks_[bi];
-      const int n = block.n_nodes_per_cell();
+      const int n = N == Eigen::Dynamic ? block.n_nodes_per_cell() : N;
+      const int dn = d * n;
+      typename K::Nodal X;
+      typename K::Scratch scratch;
       for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
-        // Cells of one colour share no node: their scatters never touch the same entry, so
-        // which thread takes which cell does not matter and a dynamic schedule (which balances
+        // Patches of one colour share no node: their scatters never touch the same entry, so
+        // which thread takes which patch does not matter and a dynamic schedule (which balances
         // threads slowed by other load on the machine) keeps the results bit-for-bit.
-#pragma omp for schedule(dynamic, 64)
-        for (std::int32_t i = plan.color_offset[color]; i < plan.color_offset[color + 1]; ++i) {
-          const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
-          const std::int32_t* nodes = block.cell(c);
-          gather<d>(x, nodes, n, X);
-          const double e = detail::element_kernel<d>(metric, *bt.table, bt.cell(c), X, options.want, options.hessian, scratch);
-          out.element_values[cell_base + c] = e;
-          if (!(e < k_inf)) continue;
-          const double w = weights.empty() ? 1.0 : weights[cell_base + c];
-          for (int a = 0; a < n; ++a)
-            for (int k = 0; k < d; ++k) {
-              const std::int32_t r = red[d * nodes[a] + k];
-              if (r >= 0) gradient[r] += w * scratch.g(k, a);
-            }
-          if (!hess) continue;
-          const std::int32_t* off = plan.scatter.data() + c * static_cast<std::size_t>(n * n);
-          for (int b = 0; b < n; ++b)
-            for (int l = 0; l < d; ++l) {
-              const std::int32_t col = red[d * nodes[b] + l];
-              if (col < 0) continue;
-              double* column = values + colptr[col];
-              const double* h = scratch.H.col(l * n + b).data();
-              for (int a = 0; a < n; ++a) {
-                double* target = column + off[a + n * b] - dofs_->first(static_cast<std::size_t>(nodes[a]));
-                for (int k = 0; k < d; ++k) {
-                  const std::int32_t r = red[d * nodes[a] + k];
-                  if (r >= 0) target[r] += w * h[k * n + a];
-                }
+#pragma omp for schedule(dynamic, 1)
+        for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p) {
+          for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+            const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+            const std::int32_t* nodes = block.cell(c);
+            const double e = K::eval(metric, bt, c, x, nodes, n, options.want, options.hessian, X, scratch);
+            out.element_values[cell_base + c] = e;
+            if (!(e < k_inf)) continue;
+            const double w = weights.empty() ? 1.0 : weights[cell_base + c];
+            // Reduced index (−1 fixed) of local DOF d·a + k, and its rank among the free DOFs of
+            // node a: the free DOFs of a node are consecutive, so that is its row offset within
+            // the rows of node a in any column.
+            std::int32_t dof[max_dofs], rank[max_dofs];
+            for (int a = 0; a < n; ++a) {
+              std::int32_t next = 0;
+              for (int k = 0; k < d; ++k) {
+                dof[d * a + k] = red[d * nodes[a] + k];
+                rank[d * a + k] = dof[d * a + k] >= 0 ? next++ : -1;
               }
             }
+            const double* g = scratch.g.data();  // d × n column-major
+            for (int j = 0; j < dn; ++j)
+              if (dof[j] >= 0) gradient[dof[j]] += w * g[j];
+            if (!hess) continue;
+            const std::int32_t* off = plan.scatter.data() + c * static_cast<std::size_t>(n * n);
+            for (int b = 0; b < n; ++b)
+              for (int l = 0; l < d; ++l) {
+                const std::int32_t col = dof[d * b + l];
+                if (col < 0) continue;
+                double* column = values + colptr[col];
+                const double* h = scratch.H.data() + static_cast<std::ptrdiff_t>(l * n + b) * dn;  // component-major
+                for (int a = 0; a < n; ++a) {
+                  double* target = column + off[a + n * b];
+                  for (int k = 0; k < d; ++k)
+                    if (rank[d * a + k] >= 0) target[rank[d * a + k]] += w * h[k * n + a];
+                }
+              }
+          }
         }
       }
-      cell_base += block.n_cells();
+    };
+    for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+      if (mesh_->cells[bi].n_nodes_per_cell() == d + 1)
+        sweep(bi, std::integral_constant<int, d + 1>{});
+      else
+        sweep(bi, std::integral_constant<int, Eigen::Dynamic>{});
+      cell_base += mesh_->cells[bi].n_cells();
     }
   }
   std::vector<double> chunk_sums((n_cells_ + k_chunk - 1) / k_chunk, 0.0);
@@ -176,9 +230,7 @@ double EnergyAssembler<d>::value(const Metric<d>& metric, const Eigen::MatrixXd&
         while (g >= block_end[bi]) ++bi;
         const CellBlock& block = mesh_->cells[bi];
         const std::size_t c = g - (block_end[bi] - block.n_cells());
-        gather<d>(x, block.cell(c), block.n_nodes_per_cell(), X);
-        const BlockTargets<d>& bt = targets_->blocks[bi];
-        const double e = detail::element_kernel<d>(metric, *bt.table, bt.cell(c), X, Want::Value, HessianMode::Exact, scratch);
+        const double e = cell_value<d>(metric, targets_->blocks[bi], c, x, block.cell(c), block.n_nodes_per_cell(), X, scratch);
         if (!(e < k_inf)) infinite = 1;
         sum += (weights.empty() ? 1.0 : weights[g]) * e;
       }

@@ -88,6 +88,75 @@ void color_cells(const CellBlock& block, const Topology& topology, std::size_t f
     order[static_cast<std::size_t>(fill[static_cast<std::size_t>(color[c])]++)] = static_cast<std::int32_t>(c);
 }
 
+CellPatches patch_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell, int patch_size) {
+  const std::size_t n_cells = block.n_cells();
+  const int n = block.n_nodes_per_cell();
+  // Calls f(g) for every cell g (local index) of the block that shares a node with cell c.
+  auto for_neighbours = [&](std::size_t c, auto&& f) {
+    const std::int32_t* nodes = block.cell(c);
+    for (int a = 0; a < n; ++a) {
+      const auto v = static_cast<std::size_t>(nodes[a]);
+      for (auto i = topology.node_cell_offset[v]; i < topology.node_cell_offset[v + 1]; ++i) {
+        const auto g = static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(i)]);
+        if (g >= first_cell && g < first_cell + n_cells) f(g - first_cell);
+      }
+    }
+  };
+  std::vector<std::int32_t> patch(n_cells, -1);
+  std::vector<std::int32_t> members;  // cells patch by patch, in patch id order
+  std::vector<std::int32_t> member_offset{0};
+  members.reserve(n_cells);
+  for (std::size_t seed = 0; seed < n_cells; ++seed) {
+    if (patch[seed] >= 0) continue;
+    const auto p = static_cast<std::int32_t>(member_offset.size() - 1);
+    const std::size_t begin = members.size();
+    patch[seed] = p;
+    members.push_back(static_cast<std::int32_t>(seed));
+    for (std::size_t next = begin; next < members.size() && members.size() - begin < static_cast<std::size_t>(patch_size); ++next)
+      for_neighbours(static_cast<std::size_t>(members[next]), [&](std::size_t g) {
+        if (patch[g] >= 0 || members.size() - begin >= static_cast<std::size_t>(patch_size)) return;
+        patch[g] = p;
+        members.push_back(static_cast<std::int32_t>(g));
+      });
+    member_offset.push_back(static_cast<std::int32_t>(members.size()));
+  }
+  const std::size_t n_patches = member_offset.size() - 1;
+  std::vector<std::int32_t> color(n_patches, -1);
+  std::vector<std::int64_t> seen;  // seen[k] == p: colour k is taken by a neighbour of patch p
+  int n_colors = 0;
+  for (std::size_t p = 0; p < n_patches; ++p) {
+    for (auto i = member_offset[p]; i < member_offset[p + 1]; ++i)
+      for_neighbours(static_cast<std::size_t>(members[static_cast<std::size_t>(i)]), [&](std::size_t g) {
+        const std::int32_t k = color[static_cast<std::size_t>(patch[g])];
+        if (k >= 0) seen[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(p);
+      });
+    int k = 0;
+    while (k < n_colors && seen[static_cast<std::size_t>(k)] == static_cast<std::int64_t>(p)) ++k;
+    if (k == n_colors) {
+      ++n_colors;
+      seen.push_back(-1);
+    }
+    color[p] = k;
+  }
+  CellPatches out;
+  out.color_offset.assign(static_cast<std::size_t>(n_colors) + 1, 0);
+  for (std::int32_t k : color) ++out.color_offset[static_cast<std::size_t>(k) + 1];
+  for (std::size_t k = 0; k < static_cast<std::size_t>(n_colors); ++k) out.color_offset[k + 1] += out.color_offset[k];
+  std::vector<std::int32_t> by_color(n_patches);
+  std::vector<std::int32_t> fill(out.color_offset.begin(), out.color_offset.end() - 1);
+  for (std::size_t p = 0; p < n_patches; ++p)
+    by_color[static_cast<std::size_t>(fill[static_cast<std::size_t>(color[p])]++)] = static_cast<std::int32_t>(p);
+  out.patch_offset.reserve(n_patches + 1);
+  out.patch_offset.push_back(0);
+  out.order.reserve(n_cells);
+  for (std::int32_t p : by_color) {
+    const auto up = static_cast<std::size_t>(p);
+    out.order.insert(out.order.end(), members.begin() + member_offset[up], members.begin() + member_offset[up + 1]);
+    out.patch_offset.push_back(static_cast<std::int32_t>(out.order.size()));
+  }
+  return out;
+}
+
 std::vector<std::int32_t> scatter_offsets(const CellBlock& block, const Topology& topology, const NodePattern& pattern) {
   const int n = block.n_nodes_per_cell();
   const auto nn = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);

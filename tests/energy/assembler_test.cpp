@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/energy/assembler.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "energy/detail/pattern.h"
 #include "energy/energy_fixtures.h"
 #include "meshmorph/fem/trace.h"
 #include "support/derivative_check.h"
@@ -229,18 +231,56 @@ TEST_P(AssemblerOnMesh, InvertedElementGivesInfiniteEnergy) { MESHMORPH_BOTH_DIM
 INSTANTIATE_TEST_SUITE_P(Small, AssemblerOnMesh,
                          ::testing::Values(MeshCase{ElementType::Triangle, 2, 2}, MeshCase{ElementType::Quadrilateral, 3, 1},
                                            MeshCase{ElementType::Tetrahedron, 1, 2}, MeshCase{ElementType::Tetrahedron, 2, 1},
-                                           MeshCase{ElementType::Hexahedron, 2, 1}),
+                                           MeshCase{ElementType::Hexahedron, 2, 1}, MeshCase{ElementType::Triangle, 1, 3}),
                          mesh_case_name);
 
-TEST(EnergyAssembler, ColorsShareNoNode) {
-  const Mesh mesh = structured_mesh(ElementType::Tetrahedron, 2, 3);
+// Meshes of many patches (the suite's meshes have one): 1 and 2 threads still agree bit for bit.
+template <int d>
+void many_patches_agree_across_threads(ElementType type, int order, int n) {
+  const Problem<d> p(MeshCase{type, order, n});
+  const Eigen::MatrixXd x = test::perturbed_mesh(type, order, n, 23).x;
+  for (HessianMode mode : {HessianMode::Exact, HessianMode::Projected}) {
+    const Assembly one = p.assemble(x, Want::Hessian, mode, 1);
+    const Assembly two = p.assemble(x, Want::Hessian, mode, 2);
+    EXPECT_EQ(std::memcmp(&one.value, &two.value, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(one.gradient.data(), two.gradient.data(), sizeof(double) * std::size_t(one.gradient.size())), 0);
+    EXPECT_EQ(std::memcmp(one.hessian.valuePtr(), two.hessian.valuePtr(), sizeof(double) * std::size_t(one.hessian.nonZeros())), 0);
+    const Eigen::SparseMatrix<double> Ht = one.hessian.transpose();
+    EXPECT_EQ((one.hessian - Ht).norm(), 0.0);  // exactly symmetric
+  }
+}
+
+TEST(EnergyAssembler, ManyPatchesAgreeAcrossThreadCounts) {
+  many_patches_agree_across_threads<2>(ElementType::Triangle, 1, 24);
+  many_patches_agree_across_threads<3>(ElementType::Tetrahedron, 1, 6);
+  many_patches_agree_across_threads<3>(ElementType::Tetrahedron, 2, 3);
+}
+
+TEST(EnergyAssembler, PatchesOfOneColourShareNoNode) {
+  const Mesh mesh = structured_mesh(ElementType::Tetrahedron, 2, 4);
   const Topology topology = build_topology(mesh);
-  const TargetField<3> targets = build_targets<3>(mesh, mesh.x, TargetKind::Ideal);
-  const DofMap dofs = DofMap::all_free(3, mesh.n_nodes());
-  const EnergyAssembler<3> assembler(mesh, topology, targets, dofs);
-  // Kuhn tetrahedra: 24 share the corner of 8 cubes, so at least 24 colours are needed.
-  EXPECT_GE(assembler.n_colors(0), 24);
-  EXPECT_LE(assembler.n_colors(0), 64);
+  const CellBlock& block = mesh.cells[0];
+  const int patch_size = 16;
+  const detail::CellPatches p = detail::patch_cells(block, topology, 0, patch_size);
+  ASSERT_EQ(p.order.size(), block.n_cells());
+  std::vector<int> seen(block.n_cells(), 0);
+  for (std::int32_t c : p.order) ++seen[static_cast<std::size_t>(c)];
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }));  // every cell once
+  const auto n_colors = static_cast<std::int32_t>(p.color_offset.size()) - 1;
+  EXPECT_GE(n_colors, 2);
+  std::vector<std::int32_t> owner(mesh.n_nodes());  // patch of the colour that touches each node
+  for (std::int32_t k = 0; k < n_colors; ++k) {
+    std::fill(owner.begin(), owner.end(), -1);
+    for (std::int32_t q = p.color_offset[k]; q < p.color_offset[k + 1]; ++q) {
+      EXPECT_LE(p.patch_offset[q + 1] - p.patch_offset[q], patch_size);
+      for (std::int32_t i = p.patch_offset[q]; i < p.patch_offset[q + 1]; ++i)
+        for (int a = 0; a < block.n_nodes_per_cell(); ++a) {
+          std::int32_t& o = owner[static_cast<std::size_t>(block.cell(static_cast<std::size_t>(p.order[static_cast<std::size_t>(i)]))[a])];
+          EXPECT_TRUE(o < 0 || o == q);
+          o = q;
+        }
+    }
+  }
 }
 
 }  // namespace

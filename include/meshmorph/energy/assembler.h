@@ -39,10 +39,12 @@ struct Assembly {
 ///
 /// Built once per mesh: the sparsity pattern of the reduced Hessian (d×d node blocks from
 /// Topology::node_nodes, fixed DOFs removed), a scatter map (cell, local a, local b) → offset
-/// in the CSC value array, and a greedy colouring of the cells of each block such that no two
-/// cells of one colour share a node. The element loop runs colour by colour in parallel and
-/// writes gradient and Hessian without atomics; every entry receives its contributions in the
-/// same order for any thread count, so results are bit-for-bit identical across thread counts.
+/// in the CSC value array, and the cells of each block grouped into patches of neighbours,
+/// greedily coloured such that no two patches of one colour share a node. The element loop
+/// runs colour by colour, the patches of a colour in parallel and the cells of a patch in
+/// order, and writes gradient and Hessian without atomics; every entry receives its
+/// contributions in the same order for any thread count, so results are bit-for-bit identical
+/// across thread counts. Linear simplices take a fixed-size element kernel.
 template <int d>
 class EnergyAssembler {
  public:
@@ -65,13 +67,14 @@ class EnergyAssembler {
   std::size_t n_cells() const { return n_cells_; }
   /// Number of stored Hessian entries (both triangles).
   std::int64_t nnz() const { return static_cast<std::int64_t>(inner_.size()); }
-  /// Number of colours of block i (parallel sweeps per assembly).
+  /// Number of patch colours of block i (parallel sweeps per assembly).
   int n_colors(std::size_t block) const { return static_cast<int>(blocks_[block].color_offset.size()) - 1; }
 
  private:
   struct BlockPlan {
-    std::vector<std::int32_t> color_offset;  // colour c: cells order[color_offset[c] .. [c+1])
-    std::vector<std::int32_t> order;         // cells sorted by colour, then index
+    std::vector<std::int32_t> color_offset;  // colour k: patches color_offset[k] .. [k+1]
+    std::vector<std::int32_t> patch_offset;  // patch p: cells order[patch_offset[p] .. [p+1])
+    std::vector<std::int32_t> order;         // cells patch by patch, patches sorted by colour
     std::vector<std::int32_t> scatter;       // n_cells × n × n: offset of node a in column block of b
   };
   const Mesh* mesh_;

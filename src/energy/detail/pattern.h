@@ -31,6 +31,20 @@ void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const
 void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
                  std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order);
 
+/// Cells of one block in patches, and the patches coloured (global cell c = first_cell + local).
+/// A patch is grown breadth-first through shared nodes from its lowest free cell up to
+/// `patch_size` cells, so that the cells of a patch are neighbours and write to nearby Hessian
+/// entries; a patch takes the smallest colour unused by the earlier patches that share a node
+/// with it. Output: the cells patch by patch, patches sorted by colour then id (`order`), patch
+/// p = order[patch_offset[p] .. [p + 1]), colour k = patches [color_offset[k] .. [k + 1]).
+struct CellPatches {
+  std::vector<std::int32_t> color_offset;
+  std::vector<std::int32_t> patch_offset;
+  std::vector<std::int32_t> order;
+};
+
+CellPatches patch_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell, int patch_size);
+
 /// Scatter map of one block: entry (c, a + n·b) is NodePattern::prefix of node a in the row
 /// list of node b, i.e. the offset of a's rows in every column of b.
 std::vector<std::int32_t> scatter_offsets(const CellBlock& block, const Topology& topology, const NodePattern& pattern);
