@@ -121,7 +121,9 @@ class MorphImpl final : public Morpher::Impl {
       if (c <= eps) {  // Algorithm 1, lines 10–15 (ε, δ as in Conn–Gould–Toint, DESIGN §6)
         penalty.update_multipliers(P.state());
         eps /= std::pow(m_, 0.9);
-        delta = std::max(delta / m_, delta_star);
+        // Once the boundary is reached only δ* is left to meet: no intermediate δ on the way
+        // (with μ still at μ₀, δ/m would take nine AL iterations from δ₀ to δ*).
+        delta = emax <= tol_max ? delta_star : std::max(delta / m_, delta_star);
       } else {  // lines 16–21
         m_ *= options_.m_factor;
         penalty.mu = mu0_ * m_ / options_.m0;
