@@ -64,7 +64,6 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     }
     const double tol = options.decrement_tolerance;
     const double rtol = std::max(options.forcing, options.linear_rtol);
-    const long long krylov_before = stats.krylov_iterations;
     // The factorization of an earlier iterate first, as CG preconditioner: its solution
     // either passes the decrement test (a subproblem changed a little from a solved one) or
     // serves as this step's direction, and a new factorization is due only when it fails.
@@ -86,6 +85,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     }
     m.reusable = reused;
     double tau = reused ? 0.0 : -1.0;
+    const long long krylov_before = stats.krylov_iterations;
     if (exact && !reused) {
       tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, rtol, p, stats);
       tau_next = tau > 1e-4 ? tau / 4.0 : 0.0;
@@ -136,7 +136,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     line_search();
     // A short step after an inexact solve may be the solve's fault (stiff, thin elements
     // whose modes CG has not resolved yet): solve on to linear_rtol and search again.
-    if (alpha < 0.1 && rtol > options.linear_rtol && stats.krylov_iterations > krylov_before) {
+    if (alpha < 0.1 && rtol > options.linear_rtol && (reused || stats.krylov_iterations > krylov_before)) {
       const Eigen::VectorXd loose = p;
       const LinearSolveStats s = reused ? solver.solve_previous(a.hessian, -a.gradient, p, options.linear_rtol)
                                         : solver.solve(-a.gradient, p, options.linear_rtol);
