@@ -53,41 +53,6 @@ void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const
   }
 }
 
-void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
-                 std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order) {
-  const std::size_t n_cells = block.n_cells();
-  const int n = block.n_nodes_per_cell();
-  std::vector<std::int32_t> color(n_cells, -1);
-  std::vector<std::int64_t> seen;  // seen[k] == c: colour k is taken by a neighbour of cell c
-  int n_colors = 0;
-  for (std::size_t c = 0; c < n_cells; ++c) {
-    const std::int32_t* nodes = block.cell(c);
-    for (int a = 0; a < n; ++a) {
-      const auto v = static_cast<std::size_t>(nodes[a]);
-      for (auto i = topology.node_cell_offset[v]; i < topology.node_cell_offset[v + 1]; ++i) {
-        const auto g = static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(i)]);
-        if (g < first_cell || g >= first_cell + n_cells) continue;
-        const std::int32_t k = color[g - first_cell];
-        if (k >= 0) seen[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(c);
-      }
-    }
-    int k = 0;
-    while (k < n_colors && seen[static_cast<std::size_t>(k)] == static_cast<std::int64_t>(c)) ++k;
-    if (k == n_colors) {
-      ++n_colors;
-      seen.push_back(-1);
-    }
-    color[c] = k;
-  }
-  color_offset.assign(static_cast<std::size_t>(n_colors) + 1, 0);
-  for (std::int32_t k : color) ++color_offset[static_cast<std::size_t>(k) + 1];
-  for (std::size_t k = 0; k < static_cast<std::size_t>(n_colors); ++k) color_offset[k + 1] += color_offset[k];
-  order.resize(n_cells);
-  std::vector<std::int32_t> fill(color_offset.begin(), color_offset.end() - 1);
-  for (std::size_t c = 0; c < n_cells; ++c)
-    order[static_cast<std::size_t>(fill[static_cast<std::size_t>(color[c])]++)] = static_cast<std::int32_t>(c);
-}
-
 CellPatches patch_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell, int patch_size) {
   const std::size_t n_cells = block.n_cells();
   const int n = block.n_nodes_per_cell();
@@ -155,6 +120,13 @@ CellPatches patch_cells(const CellBlock& block, const Topology& topology, std::s
     out.patch_offset.push_back(static_cast<std::int32_t>(out.order.size()));
   }
   return out;
+}
+
+void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
+                 std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order) {
+  CellPatches single = patch_cells(block, topology, first_cell, 1);  // one cell per patch
+  color_offset = std::move(single.color_offset);
+  order = std::move(single.order);
 }
 
 std::vector<std::int32_t> scatter_offsets(const CellBlock& block, const Topology& topology, const NodePattern& pattern) {

@@ -27,6 +27,22 @@ struct ElementScratch {
   Eigen::MatrixXd H;  // dn × dn, component-major local order k·n + a
 };
 
+/// Completes a component-major element Hessian (d·n × d·n) whose blocks (k, l), k ≤ l, are
+/// set: the blocks below are their transposes and the diagonal blocks are made exactly
+/// symmetric, so that the assembled matrix is symmetric bit for bit.
+template <int d, class Matrix>
+void complete_symmetric(Matrix& H, int n) {
+  for (int k = 0; k < d; ++k) {
+    for (int l = k + 1; l < d; ++l) H.block(l * n, k * n, n, n) = H.block(k * n, l * n, n, n).transpose();
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < a; ++b) {
+        const double v = 0.5 * (H(k * n + a, k * n + b) + H(k * n + b, k * n + a));
+        H(k * n + a, k * n + b) = v;
+        H(k * n + b, k * n + a) = v;
+      }
+  }
+}
+
 /// E_e of one element (without ω_e). Fills s.g and s.H (component-major) as `want` asks;
 /// returns +∞, leaving them unspecified, when μ is not finite at some point.
 ///
@@ -75,19 +91,9 @@ double element_kernel(const Metric<d>& metric, const ShapeTable& table, const Qu
     s.H.resize(d * n, d * n);
     int pair = 0;
     for (int k = 0; k < d; ++k)
-      for (int l = k; l < d; ++l, ++pair) {
+      for (int l = k; l < d; ++l, ++pair)
         s.H.block(k * n, l * n, n, n).noalias() = s.C.middleCols(pair * Q * d, Q * d) * s.B.transpose();
-        if (l != k) {
-          s.H.block(l * n, k * n, n, n) = s.H.block(k * n, l * n, n, n).transpose();
-        } else {  // exact symmetry, so that the assembled matrix is symmetric bit for bit
-          for (int a = 0; a < n; ++a)
-            for (int b = 0; b < a; ++b) {
-              const double v = 0.5 * (s.H(k * n + a, k * n + b) + s.H(k * n + b, k * n + a));
-              s.H(k * n + a, k * n + b) = v;
-              s.H(k * n + b, k * n + a) = v;
-            }
-        }
-      }
+    complete_symmetric<d>(s.H, n);
   }
   return value;
 }
@@ -139,20 +145,7 @@ double element_kernel_fixed(const Metric<d>& metric, const ShapeTable& table, co
         s.H.template block<n, n>(k * n, l * n).noalias() += C.lazyProduct(Bq.transpose());
       }
   }
-  if (hess)
-    for (int k = 0; k < d; ++k)
-      for (int l = k; l < d; ++l) {
-        if (l != k) {
-          s.H.template block<n, n>(l * n, k * n) = s.H.template block<n, n>(k * n, l * n).transpose();
-        } else {  // exact symmetry, as in element_kernel
-          for (int a = 0; a < n; ++a)
-            for (int b = 0; b < a; ++b) {
-              const double v = 0.5 * (s.H(k * n + a, k * n + b) + s.H(k * n + b, k * n + a));
-              s.H(k * n + a, k * n + b) = v;
-              s.H(k * n + b, k * n + a) = v;
-            }
-        }
-      }
+  if (hess) complete_symmetric<d>(s.H, n);
   return value;
 }
 

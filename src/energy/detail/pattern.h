@@ -27,7 +27,8 @@ void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const
 
 /// Greedy colouring of the cells of one block (global cell c = first_cell + local): a cell
 /// takes the smallest colour unused by the earlier cells that share a node with it. Output:
-/// cells sorted by colour then index (`order`) and the colour offsets into it.
+/// cells sorted by colour then index (`order`) and the colour offsets into it (patch_cells
+/// with one cell per patch).
 void color_cells(const CellBlock& block, const Topology& topology, std::size_t first_cell,
                  std::vector<std::int32_t>& color_offset, std::vector<std::int32_t>& order);
 
