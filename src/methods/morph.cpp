@@ -76,7 +76,8 @@ class MorphImpl final : public Morpher::Impl {
       // quarter of the iterations of eight and (measured on the §5.2 shells) neither more
       // Newton steps nor another AL iteration; a premature decrement test only leaves the
       // rest to the next subproblem. The last ones, at δ*, decide the result: tight solves.
-      no.forcing = delta > delta_star * (1 + 1e-12) ? 1e-2 : 0.0;
+      const bool final_delta = delta <= delta_star * (1 + 1e-12);
+      no.forcing = final_delta ? 0.0 : 1e-2;
       bool newton_ok = true;
       std::string newton_message;
       for (int update = 0; update <= options_.max_weight_updates; ++update) {
@@ -109,7 +110,7 @@ class MorphImpl final : public Morpher::Impl {
       result.history.push_back(row);
       log_progress("morph: step " + std::to_string(step) + ", AL iteration " + std::to_string(outer) +
                    format(": boundary error %.3g (max %.3g), min quality %.3f, mu %.3g", c, emax, row.min_quality, penalty.mu));
-      if (emax <= tol_max && newton_ok && delta <= delta_star * (1 + 1e-12)) {
+      if (emax <= tol_max && newton_ok && final_delta) {
         result.converged = true;
         break;
       }

@@ -150,7 +150,8 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
   // costs a few hundredths of a factorization in 3D, so a handful of iterations is the
   // budget; beyond it a new factorization is cheaper.
   constexpr int k_max_iterations = 12;
-  const double tol = (rtol > 0.0 ? rtol : 1e-9) * b.norm();
+  const double b_norm = b.norm();
+  const double tol = (rtol > 0.0 ? rtol : 1e-9) * b_norm;
   if (x.size() != b.size()) x.setZero(b.size());
   Eigen::VectorXd r = b - A * x, z(b.size()), p(b.size()), q(b.size());
   solve(r.data(), z.data());
@@ -176,7 +177,7 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
     p = z + (rz_new / rz) * p;
     rz = rz_new;
   }
-  stats.relative_residual = b.norm() > 0.0 ? r_norm / b.norm() : 0.0;
+  stats.relative_residual = b_norm > 0.0 ? r_norm / b_norm : 0.0;
   stats.ok = r_norm <= tol && x.allFinite();
   if (!stats.ok && stats.message.empty())
     stats.message = "the previous factorization no longer preconditions well enough";
