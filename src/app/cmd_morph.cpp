@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/detail/method_output.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
@@ -71,30 +72,6 @@ RunSettings read_options(const CaseFile& c, int threads) {
   return s;
 }
 
-// max and root-mean-square distance of the Prescribed nodes from their targets, and of the
-// Slide nodes from their planes.
-std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen::MatrixXd& x) {
-  double max = 0.0, sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < bc.n_nodes(); ++i) {
-    const auto col = static_cast<Eigen::Index>(i);
-    double e = 0.0;
-    if (bc.role[i] == NodeRole::Prescribed) e = (x.col(col) - bc.target.col(col)).norm();
-    else if (bc.role[i] == NodeRole::Slide) e = std::abs(bc.normal.col(col).dot(x.col(col) - bc.target.col(col)));
-    else continue;
-    max = std::max(max, e);
-    sum += e * e;
-    ++count;
-  }
-  return {max, count ? std::sqrt(sum / static_cast<double>(count)) : 0.0};
-}
-
-std::filesystem::path step_path(const std::filesystem::path& out, int step) {
-  char suffix[16];
-  std::snprintf(suffix, sizeof suffix, "_%04d", step);
-  return out.parent_path() / (out.stem().string() + suffix + out.extension().string());
-}
-
 Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.case_file);
@@ -141,7 +118,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       if (c.output_each_step && output && s < c.steps) {
         Mesh moved = input;
         moved.x = x;
-        write_mesh(step_path(*output, s), moved);
+        write_mesh(detail::step_path(*output, s), moved);
       }
     }
     report.iterations = counts;
@@ -156,36 +133,13 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
 
   Mesh moved = input;
   moved.x = x;
-  const QualityReport q = quality_report(moved, &input);
-  const auto [err_max, err_l2] = boundary_errors(bc, x);
-  report.dim = input.dim;
-  report.order = input.order();
-  report.nodes = input.n_nodes();
-  report.elements = input.n_cells();
-  report.inverted_elements = q.inverted_elements;
-  report.valid = q.inverted_elements == 0;
-  report.min_quality = q.min_quality;
-  report.mean_quality = q.mean_quality;
-  report.min_shape_quality = q.min_shape_quality;
-  report.min_scaled_jacobian = q.min_scaled_jacobian;
-  report.boundary_error_max = err_max;
-  report.boundary_error_l2 = err_l2;
-  if (!report.valid) {
-    report.converged = false;
-    report.message = std::to_string(q.inverted_elements) + " inverted elements" +
-                     (report.message.empty() ? std::string() : "; " + report.message);
-  }
+  const QualityReport q = detail::fill_result(report, moved, &input, bc);
   if (report.converged && report.message.empty()) report.message = "boundary reached, mesh valid";
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Only a converged, valid result is written as a mesh (issue 3: a run that misses its goal
   // writes none); the report is always written.
-  if (report.converged && output) {
-    WriteOptions wo;
-    wo.cell_data[std::string(kQualityField)] = q.quality;
-    wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
-    write_mesh(*output, moved, wo);
-  }
+  detail::write_result_mesh(report, moved, q, output);
   if (report_path) write_report(*report_path, report);
 
   out << "morph    " << a.case_file << " (" << report.method << ")\n"
@@ -199,13 +153,9 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f; inverted %zu\n", q.min_quality, q.mean_quality,
                 q.inverted_elements);
   out << line;
-  std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", err_max, err_l2);
-  out << line << "result   " << report.message << "\n";
-  if (report.converged && output) out << "wrote    " << output->string() << "\n";
-  else if (output) out << "wrote    no mesh (the goal was not reached)\n";
-  std::snprintf(line, sizeof line, "time     %.3f s\n", report.seconds);
+  std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", *report.boundary_error_max, *report.boundary_error_l2);
   out << line;
-  return report.converged ? Outcome::GoalReached : Outcome::GoalMissed;
+  return detail::print_result(out, report, output);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "meshmorph/log.h"
 #include "meshmorph/quality/metric_registry.h"
 #include "meshmorph/solve/newton.h"
+#include "methods/detail/format.h"
 #include "methods/detail/morph_problem.h"
 
 namespace meshmorph {
@@ -22,12 +23,7 @@ struct Morpher::Impl {
 
 namespace {
 
-template <class... Args>
-std::string format(const char* fmt, Args... args) {
-  char buffer[200];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
+using detail::format;
 
 template <int d>
 class MorphImpl final : public Morpher::Impl {

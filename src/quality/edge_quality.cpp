@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/LU>
@@ -91,6 +92,48 @@ MetricEval<d> EdgeQuality<d>::eval(const MatT<d>& T, Want want) const {
   const double n = options_.n;
   const double F = std::exp(n * g.v);
   return detail::to_eval(detail::compose(g, F, n * F, n * n * F, want));
+}
+
+template <int d>
+double EdgeQuality<d>::volume(const MatT<d>& T) {
+  return regular_simplex<d>().volume * T.determinant();
+}
+
+// With g = log F / n: g_δ = 2δ/(rh), g_δδ = 2/(rh) − 8δ²/(r³h) − 4δ²/(r²h²), g_δV = −4δ/r³ and
+// dg = dV/r − dL/L along dT; then F_δ = nF g_δ, F_δδ = nF(n g_δ² + g_δδ) and
+// F_δT:dT = nF(n g_δ dg + g_δV dV) (docs/metrics.md#edge_quality).
+template <int d>
+typename EdgeQuality<d>::DeltaDerivatives EdgeQuality<d>::delta_derivatives(const MatT<d>& T, const MatT<d>& dT) const {
+  const RegularSimplex<d>& reg = regular_simplex<d>();
+  const double delta = options_.delta;
+  const double V = volume(T);
+  // d det T along dT = Σ cof(T) : dT.
+  double ddet = 0.0;
+  if constexpr (d == 2) {
+    ddet = dT(0, 0) * T(1, 1) + T(0, 0) * dT(1, 1) - dT(1, 0) * T(0, 1) - T(1, 0) * dT(0, 1);
+  } else {
+    ddet = dT.col(0).dot(T.col(1).cross(T.col(2))) + dT.col(1).dot(T.col(2).cross(T.col(0))) +
+           dT.col(2).dot(T.col(0).cross(T.col(1)));
+  }
+  const double dV = reg.volume * ddet;
+  double L = 0.0, dL = 0.0;
+  for (const auto& e : reg.edges) {
+    const Eigen::Matrix<double, d, 1> te = T * e;
+    const double s = te.squaredNorm();
+    L += std::pow(s, 0.5 * d);
+    dL += d * std::pow(s, 0.5 * d - 1.0) * te.dot(dT * e);
+  }
+  const double r = std::sqrt(V * V + 4.0 * delta * delta);
+  const double h = V >= 0.0 ? 0.5 * (V + r) : 2.0 * delta * delta / (r - V);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (!(h > 0.0) || !(L > 0.0)) return {inf, inf, inf};
+  const double n = options_.n;
+  const double F = std::exp(n * (std::log(reg.constant) + std::log(h) - std::log(L)));
+  const double g_d = 2.0 * delta / (r * h);
+  const double g_dd = 2.0 / (r * h) - 8.0 * delta * delta / (r * r * r * h) - 4.0 * delta * delta / (r * r * h * h);
+  const double g_dV = -4.0 * delta / (r * r * r);
+  const double dg = dV / r - dL / L;
+  return {n * F * g_d, n * F * (n * g_d * g_d + g_dd), n * F * (n * g_d * dg + g_dV * dV)};
 }
 
 template class EdgeQuality<2>;

@@ -171,6 +171,10 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
                     stats.krylov_iterations);
       log_detail(line);
     }
+    if (options.on_step && !options.on_step(stats.iterations, alpha)) {
+      stats.stopped = true;
+      return stats;
+    }
   }
 }
 

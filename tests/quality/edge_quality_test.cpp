@@ -62,6 +62,41 @@ TEST(EdgeQuality, FiniteAndDecreasingThroughInversionWhenRegularized) {
             std::numeric_limits<double>::infinity());
 }
 
+// ∂F/∂δ, ∂²F/∂δ² against differences in δ, and the mixed derivative against the difference
+// of ∂F/∂δ along T + t dT, at well-shaped, anisotropic and inverted T (paper 001 eq. 13).
+template <int d>
+void check_delta_derivatives() {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (const auto& sample : test::matrix_samples<d>(3, true)) {
+    if (sample.kind == "near_singular") continue;  // δ ≈ V there: covered by the inverted ones
+    MatT<d> dT;
+    for (int i = 0; i < d * d; ++i) dT(i) = normal(rng);
+    const double scale = std::pow(std::abs(sample.T.determinant()), 1.0 / d);
+    for (double delta : {0.05, 0.3}) {
+      const double dl = delta * scale * scale;  // δ comparable with V
+      const auto F = [&](double delta_, const MatT<d>& T) { return EdgeQuality<d>({delta_, -1.0}).eval(T, Want::Value).mu; };
+      const auto D = [&](double delta_, const MatT<d>& T) { return EdgeQuality<d>({delta_, -1.0}).delta_derivatives(T, dT); };
+      const typename EdgeQuality<d>::DeltaDerivatives a = D(dl, sample.T);
+      const double h = 1e-3 * dl;
+      const double fd1 = (F(dl - 2 * h, sample.T) - 8 * F(dl - h, sample.T) + 8 * F(dl + h, sample.T) - F(dl + 2 * h, sample.T)) / (12 * h);
+      const double fd2 = (D(dl - 2 * h, sample.T).d_delta - 8 * D(dl - h, sample.T).d_delta + 8 * D(dl + h, sample.T).d_delta -
+                          D(dl + 2 * h, sample.T).d_delta) / (12 * h);
+      // Step below the smallest singular value (|τ|/|T|^{d−1} ≤ σ_min), where F varies fastest.
+      const double t = 1e-3 * std::abs(sample.T.determinant()) / std::pow(sample.T.norm(), d - 1) / dT.norm();
+      const auto along = [&](double s) { return D(dl, sample.T + s * dT).d_delta; };
+      const double fdm = (along(-2 * t) - 8 * along(-t) + 8 * along(t) - along(2 * t)) / (12 * t);
+      EXPECT_NEAR(a.d_delta, fd1, 1e-7 * std::max(1.0, std::abs(fd1))) << sample.kind << " δ " << dl;
+      EXPECT_NEAR(a.d2_delta, fd2, 1e-6 * std::max(1.0, std::abs(fd2))) << sample.kind << " δ " << dl;
+      EXPECT_NEAR(a.d2_delta_dT, fdm, 1e-6 * std::max(1.0, std::abs(fdm))) << sample.kind << " δ " << dl;
+      EXPECT_LT(a.d_delta, 0.0) << "a larger δ lowers F";
+    }
+  }
+}
+
+TEST(EdgeQuality, DeltaDerivativesMatchDifferences2D) { check_delta_derivatives<2>(); }
+TEST(EdgeQuality, DeltaDerivativesMatchDifferences3D) { check_delta_derivatives<3>(); }
+
 TEST(EdgeQuality, RejectsBadParameters) {
   EXPECT_THROW(EdgeQuality<2>({-1.0, -1.0}), std::invalid_argument);
   EXPECT_THROW(EdgeQuality<3>({0.0, 1.0}), std::invalid_argument);

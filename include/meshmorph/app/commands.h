@@ -37,6 +37,8 @@ void add_convert_command(CLI::App& app, Command& run);
 /// `meshmorph morph CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1); `threads` is read when
 /// the command runs (the common --threads option).
 void add_morph_command(CLI::App& app, Command& run, const int& threads);
+/// `meshmorph untangle CASE.json | MESH [-o OUT] [--report FILE]` (DESIGN §3.1).
+void add_untangle_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
 void add_check_command(CLI::App& app, Command& run);
 

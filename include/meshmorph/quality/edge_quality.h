@@ -31,6 +31,18 @@ class EdgeQuality final : public Metric<d> {
   explicit EdgeQuality(EdgeQualityOptions options = {});
   MetricEval<d> eval(const MatT<d>& T, Want want) const override;
   std::string_view name() const override { return "edge_quality"; }
+
+  /// V of eq. 10 for T: τ·V_reg, the volume of T applied to the unit-edge regular simplex.
+  static double volume(const MatT<d>& T);
+
+  /// Derivatives of F in δ, for the δ update of paper 001 eq. 13: ∂F/∂δ, ∂²F/∂δ² and the
+  /// mixed one along dT, (∂²F/∂δ∂T) : dT. Not finite where F is not.
+  struct DeltaDerivatives {
+    double d_delta = 0.0;
+    double d2_delta = 0.0;
+    double d2_delta_dT = 0.0;
+  };
+  DeltaDerivatives delta_derivatives(const MatT<d>& T, const MatT<d>& dT) const;
   const EdgeQualityOptions& options() const { return options_; }
 
  private:

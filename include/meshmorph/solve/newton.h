@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <functional>
 #include <string>
 
 #include <Eigen/Core>
@@ -47,6 +48,10 @@ struct NewtonOptions {
   /// decrement test is then as loose), and a step whose line search ends below α = 0.1 is
   /// solved on to linear_rtol and searched again.
   double forcing = 0.0;
+  /// Called after each accepted step with the step count and the step length α; returning
+  /// false ends newton() there (NewtonStats::stopped). The caller may change the problem's
+  /// parameters in it (untangle lowers δ): the next iterate is evaluated afresh.
+  std::function<bool(int iteration, double alpha)> on_step;
 };
 
 struct NewtonStats {
@@ -56,6 +61,7 @@ struct NewtonStats {
   long long krylov_iterations = 0;
   double value = 0.0;         ///< energy at the final iterate
   double decrement = 0.0;     ///< ½ gᵀH⁻¹g at the last check
+  bool stopped = false;       ///< NewtonOptions::on_step ended the iteration
   std::string message;        ///< why it stopped without converging
 };
 

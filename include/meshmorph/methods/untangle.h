@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/mesh/topology.h"
+#include "meshmorph/solve/linear_solver.h"
+
+namespace meshmorph {
+
+/// The element the functional of paper 001 treats as ideal (eq. 6–9).
+enum class UntangleReference {
+  /// The input element (eq. 8, "reference element" compensation): a valid input is a minimiser,
+  /// and its grading and anisotropy are kept. Needs a valid input mesh.
+  Input,
+  /// The regular simplex (square, cube), one size for the whole mesh (the input's mean cell
+  /// volume): the paper's tests. Elements are driven towards equilateral shape.
+  Regular,
+};
+
+/// How δ is lowered while the mesh is tangled (docs/untangle.md).
+enum class DeltaRule {
+  /// Newton converges (loosely) at each δ before the decrease of eq. 13–14 (with Δx = 0):
+  /// the safeguard of DESIGN §6, which untangles cases the literal rule does not.
+  Continuation,
+  /// The paper's rule: δ decreases by eq. 13–14 after every Newton step of unit length.
+  Paper,
+};
+
+/// Parameters of simultaneous untangling and smoothing (paper 001); defaults are the paper's
+/// (§5: n = −1, α = 1, β = 0.1, ε_q = 0.01, h*_min = 0.75, ε_δ = 1e-6, γ = 0.5 / 1).
+struct UntangleOptions {
+  double n = -1.0;             ///< exponent of F = Σ_e q_e*ⁿ (eq. 2, 11)
+  double h_min = 0.75;         ///< h*_min = h(V_min)/δ of the initial δ (eq. 24)
+  double eps_delta = 1e-6;     ///< ε_δ: smallest initial δ
+  double alpha = 1.0;          ///< eq. 14
+  double beta = 0.1;           ///< eq. 14: δ never drops below β·δ in one update
+  double eps_q = 0.01;         ///< stop when valid and |Δq_min|/q_min < ε_q
+  double gamma_untangle = 0.5; ///< off-diagonal relaxation while tangled
+  double gamma_smooth = 1.0;   ///< ... and while smoothing (δ = 0)
+  UntangleReference reference = UntangleReference::Input;
+  DeltaRule delta_rule = DeltaRule::Continuation;
+  bool predictor = true;       ///< differential predictor between steps (eq. 22–23)
+  int max_newton = 300;        ///< Newton steps per step of a time series
+  LinearSolverKind solver = LinearSolverKind::Auto;
+  int threads = 0;
+};
+
+/// One Newton step of the report's history.
+struct UntangleIteration {
+  int step = 1;
+  int newton = 0;         ///< Newton steps so far in this step (0: the starting mesh)
+  double delta = 0.0;     ///< δ of the functional the step minimised
+  double alpha = 0.0;     ///< the step length (0 for the starting row)
+  double min_quality = 0.0;   ///< q_min = min_e q_e of eq. 3 at δ = 0 (0 when inverted)
+  std::size_t inverted = 0;   ///< inverted cells after the step
+};
+
+struct UntangleResult {
+  bool converged = false;
+  std::string message;
+  std::size_t initial_inverted = 0;  ///< inverted cells once the boundary is at its targets
+  long long newton = 0, linear = 0, delta_updates = 0;
+  double min_quality = 0.0;          ///< q_min at the end
+  std::vector<UntangleIteration> history;
+};
+
+/// Simultaneous untangling and smoothing of paper 001: puts the prescribed nodes at their
+/// targets (which may tangle the mesh) and minimises F = Σ_e q_e*ⁿ over the free nodes, with
+/// the regularized volume h(V) while the mesh is tangled and F itself once it is valid.
+/// Fixed and prescribed nodes are not unknowns; a slide node keeps the coordinate normal to
+/// its plane (planes normal to a coordinate axis only).
+///
+/// One Untangler serves a time series: each solve() starts from the previous result, moved
+/// by the differential predictor (eq. 22–23) when it is on.
+class Untangler {
+ public:
+  /// `input`, `topology` and `bc` must outlive the Untangler. Throws InputError when the
+  /// reference is Input and an input cell is inverted, or a slide plane is oblique.
+  Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options);
+  ~Untangler();
+  Untangler(const Untangler&) = delete;
+  Untangler& operator=(const Untangler&) = delete;
+
+  /// Moves `x` (dim × n_nodes; the input coordinates for the first step, else the last
+  /// result) so that the Prescribed nodes sit at `target` (dim × n_nodes) and the mesh is
+  /// valid and smooth. On return `x` is the last iterate, valid or not (see converged).
+  UntangleResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step = 1);
+
+  struct Impl;  ///< the implementation for one dimension (src/methods/untangle.cpp)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshmorph

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <utility>
+
+#include <Eigen/Core>
+
+#include "meshmorph/app/commands.h"
+#include "meshmorph/app/report.h"
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/mesh/mesh.h"
+#include "meshmorph/quality/quality_report.h"
+
+namespace meshmorph::detail {
+
+/// Max and root-mean-square distance of the Prescribed nodes from their targets, and of the
+/// Slide nodes from their planes.
+std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen::MatrixXd& x);
+
+/// `out` with the step number before the extension: out_0003.vtu (`output_each_step`).
+std::filesystem::path step_path(const std::filesystem::path& out, int step);
+
+/// Measures `moved` and fills the mesh, quality and boundary fields of a method's report
+/// (DESIGN §3.3): quality against `input` unless it is null. An invalid result is not
+/// converged, whatever the method said, and the message says how many cells are inverted.
+QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc);
+
+/// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
+/// method writes no mesh otherwise, DESIGN §3.1).
+void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
+                       const std::optional<std::filesystem::path>& output);
+
+/// The last lines of a method's summary (result, what was written, time) and its outcome.
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output);
+
+}  // namespace meshmorph::detail

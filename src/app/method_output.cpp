@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "app/detail/method_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph::detail {
+
+std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen::MatrixXd& x) {
+  double max = 0.0, sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < bc.n_nodes(); ++i) {
+    const auto col = static_cast<Eigen::Index>(i);
+    double e = 0.0;
+    if (bc.role[i] == NodeRole::Prescribed) e = (x.col(col) - bc.target.col(col)).norm();
+    else if (bc.role[i] == NodeRole::Slide) e = std::abs(bc.normal.col(col).dot(x.col(col) - bc.target.col(col)));
+    else continue;
+    max = std::max(max, e);
+    sum += e * e;
+    ++count;
+  }
+  return {max, count ? std::sqrt(sum / static_cast<double>(count)) : 0.0};
+}
+
+std::filesystem::path step_path(const std::filesystem::path& out, int step) {
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "_%04d", step);
+  return out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+}
+
+QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc) {
+  QualityReport q = quality_report(moved, input);
+  const auto [err_max, err_l2] = boundary_errors(bc, moved.x);
+  report.dim = moved.dim;
+  report.order = moved.order();
+  report.nodes = moved.n_nodes();
+  report.elements = moved.n_cells();
+  report.inverted_elements = q.inverted_elements;
+  report.valid = q.inverted_elements == 0;
+  if (input) {
+    report.min_quality = q.min_quality;
+    report.mean_quality = q.mean_quality;
+  }
+  report.min_shape_quality = q.min_shape_quality;
+  report.min_scaled_jacobian = q.min_scaled_jacobian;
+  report.boundary_error_max = err_max;
+  report.boundary_error_l2 = err_l2;
+  if (!report.valid) {
+    report.converged = false;
+    report.message = std::to_string(q.inverted_elements) + " inverted elements" +
+                     (report.message.empty() ? std::string() : "; " + report.message);
+  }
+  return q;
+}
+
+void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
+                       const std::optional<std::filesystem::path>& output) {
+  if (!report.converged || !output) return;
+  WriteOptions wo;
+  if (!q.quality.empty()) wo.cell_data[std::string(kQualityField)] = q.quality;
+  wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
+  write_mesh(*output, moved, wo);
+}
+
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output) {
+  out << "result   " << report.message << "\n";
+  if (report.converged && output) out << "wrote    " << output->string() << "\n";
+  else if (output) out << "wrote    no mesh (the goal was not reached)\n";
+  char line[64];
+  std::snprintf(line, sizeof line, "time     %.3f s\n", report.seconds);
+  out << line;
+  return report.converged ? Outcome::GoalReached : Outcome::GoalMissed;
+}
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/assembler.h"
+#include "meshmorph/methods/boundary_targets.h"
+#include "meshmorph/methods/untangle.h"
+#include "meshmorph/quality/edge_quality.h"
+#include "meshmorph/solve/newton.h"
+
+namespace meshmorph {
+
+/// The functional of paper 001, F(x) = Σ_e F_e with F_e the mean of q*(T)ⁿ over the points
+/// of the cell (eq. 11; one point for a linear simplex, so F_e = q_e*ⁿ exactly), as a Newton
+/// problem over the free DOFs, with δ and the off-diagonal relaxation γ as parameters.
+///
+/// Points: the one point of a linear simplex; the corners of a linear quadrilateral, where A
+/// is the Jacobian of the corner triangle (docs/untangle.md: the mean over the corner
+/// simplices in place of eq. 5's product); the points of the validity test (fem/validity.h)
+/// for hexahedra and curved cells. So a finite F at δ = 0 means a valid mesh.
+template <int d>
+class UntangleProblem final : public NewtonProblem {
+ public:
+  /// State measures at the current iterate.
+  struct Measures {
+    double v_min = 0.0;         ///< min over points of V = τ·V_reg (eq. 24's V_min)
+    double q_min = 0.0;         ///< min over points of q (eq. 3, δ = 0; 0 where inverted)
+    std::size_t inverted = 0;   ///< cells with det A ≤ 0 at a point (the validity test's points)
+  };
+
+  UntangleProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc,
+                  UntangleReference reference, double n, int threads);
+
+  std::size_t n_free() const { return dofs_.n_free(); }
+  std::size_t n_cells() const { return n_cells_; }
+  void set_state(const Eigen::MatrixXd& x) { x_ = x; }
+  const Eigen::MatrixXd& state() const { return x_; }
+  double delta() const { return metric_.options().delta; }
+  void set_delta(double delta) { metric_ = EdgeQuality<d>({delta, n_}); }
+  void set_gamma(double gamma) { gamma_ = gamma; }
+  /// The accepted step of the last accept() (α p, reduced numbering).
+  const Eigen::VectorXd& last_step() const { return last_step_; }
+
+  /// F at the current iterate.
+  double energy() const { return assembler_->value(metric_, x_, {}, threads_); }
+
+  void evaluate(HessianMode mode, Assembly& out) override;
+  double trial_value(const Eigen::VectorXd& p, double alpha) override;
+  void accept(const Eigen::VectorXd& p, double alpha) override;
+
+  Measures measure() const;
+  /// Cells whose every node is fixed or prescribed and that are inverted: no motion of the
+  /// free nodes can repair them.
+  std::size_t stuck_inverted() const;
+  /// Δδ of eq. 13 at the current iterate for the step `dx` (reduced numbering; empty = 0):
+  /// −(∂F/∂δ + ∂²F/∂δ∂x·dx) / ∂²F/∂δ².
+  double delta_increment(const Eigen::VectorXd& dx) const;
+  /// The differential predictor (eq. 22–23): the increment of the free nodes that keeps
+  /// ∇F = 0 to first order when the prescribed nodes move from the current iterate to
+  /// `target`, K_ii Δx_i = −K_ib Δx_b with the Hessian at the current iterate. Returns false
+  /// (x unchanged) where the Hessian is not finite or the solve fails.
+  bool predict(const Eigen::MatrixXd& target, LinearSolver& solver, Eigen::MatrixXd& increment);
+
+ private:
+  void scale_off_diagonal(Assembly& out) const;
+
+  const Mesh* mesh_;
+  const Topology* topology_;
+  const BoundaryTargets* bc_;
+  int threads_;
+  double n_;
+  double gamma_ = 1.0;
+  std::size_t n_cells_ = 0;
+  std::vector<std::unique_ptr<ShapeTable>> corner_tables_;  // owned tables of the corner points
+  TargetField<d> targets_;
+  DofMap dofs_;                     // unknowns: free nodes, slide nodes' tangential DOFs
+  DofMap wide_dofs_;                // ... and the prescribed nodes (the predictor's K_ib)
+  std::unique_ptr<EnergyAssembler<d>> assembler_, wide_assembler_;
+  std::vector<int> component_;      // per reduced DOF: its coordinate k
+  std::vector<std::uint8_t> all_fixed_;  // per cell (global order): no free DOF
+  EdgeQuality<d> metric_;
+  Eigen::MatrixXd x_, trial_;
+  Eigen::VectorXd last_step_;
+};
+
+}  // namespace meshmorph

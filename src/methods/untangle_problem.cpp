@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: MIT
+#include "methods/detail/untangle_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/LU>
+#include <omp.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/reference_element.h"
+#include "meshmorph/fem/validity.h"
+
+namespace meshmorph {
+namespace {
+
+int thread_count(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
+
+template <int d>
+Eigen::Matrix<double, d, Eigen::Dynamic> gather(const Eigen::MatrixXd& x, const std::int32_t* nodes, int n) {
+  Eigen::Matrix<double, d, Eigen::Dynamic> X(d, n);
+  for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+  return X;
+}
+
+}  // namespace
+
+template <int d>
+UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc,
+                                    UntangleReference reference, double n, int threads)
+    : mesh_(&input), topology_(&topology), bc_(&bc), threads_(threads), n_(n), metric_({0.0, n}) {
+  // The regular reference has one size for the whole mesh, the input's mean cell volume, so
+  // that δ compares with volumes of the mesh's own scale (the paper's h(V) up to a constant).
+  double volume_sum = 0.0;
+  for (const CellBlock& block : input.cells) {
+    const ShapeTable& table = shape_table(block.type, block.order, metric_quadrature_degree(block.type, block.order));
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const auto X = gather<d>(input.x, block.cell(c), block.n_nodes_per_cell());
+      for (int q = 0; q < table.n_points(); ++q) volume_sum += table.weights[q] * std::abs((X * table.grad(q)).determinant());
+    }
+    n_cells_ += block.n_cells();
+  }
+  if (reference == UntangleReference::Regular && !(volume_sum > 0.0))
+    throw InputError("untangle: every cell of the input mesh has zero volume");
+  const double mean_volume = volume_sum / static_cast<double>(std::max<std::size_t>(n_cells_, 1));
+
+  targets_.kind = reference == UntangleReference::Input ? TargetKind::Input : TargetKind::Ideal;
+  targets_.blocks.resize(input.cells.size());
+  for (std::size_t bi = 0; bi < input.cells.size(); ++bi) {
+    const CellBlock& block = input.cells[bi];
+    // Linear simplices: their one point. Linear quadrilaterals: the corners, whose Jacobians
+    // are the corner triangles' (eq. 5), and det A is smallest at a corner. Hexahedra and
+    // curved cells: the points of the validity test, so that the functional sees every
+    // inversion that test sees.
+    const ShapeTable* table = nullptr;
+    if (block.order == 1 && block.type == ElementType::Quadrilateral) {
+      corner_tables_.push_back(std::make_unique<ShapeTable>(tabulate(block.type, 1, reference_element(block.type, 1).nodes)));
+      table = corner_tables_.back().get();
+    } else if (block.order == 1 && is_simplex(block.type)) {
+      table = &shape_table(block.type, 1, metric_quadrature_degree(block.type, 1));
+    } else {
+      table = &validity_samples(block.type, block.order);
+    }
+    BlockTargets<d>& bt = targets_.blocks[bi];
+    bt.table = table;
+    const int Q = table->n_points();
+    // F_e is the mean over the points (quadrature weights normalized; corners alike).
+    Eigen::VectorXd w = table->weights.size() == Q ? table->weights : Eigen::VectorXd::Ones(Q);
+    w /= w.sum();
+    bt.points.resize(block.n_cells() * static_cast<std::size_t>(Q));
+    const MatT<d> W_ideal_inv = ideal_jacobian<d>(block.type, mean_volume > 0.0 ? mean_volume : 1.0).inverse();
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const auto X = gather<d>(input.x, block.cell(c), block.n_nodes_per_cell());
+      for (int q = 0; q < Q; ++q) {
+        QuadratureTarget<d>& t = bt.points[c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)];
+        t.weight = w[q];
+        if (reference == UntangleReference::Regular) {
+          t.W_inv = W_ideal_inv;
+          continue;
+        }
+        const MatT<d> A = X * table->grad(q);
+        if (!(A.determinant() > 0.0))
+          throw InputError("untangle: cell " + std::to_string(c) + " of cell block " + std::to_string(bi) +
+                           " of the input mesh is inverted or degenerate, so it cannot be the reference element"
+                           " (\"reference\": \"regular\" untangles such a mesh)");
+        t.W_inv = A.inverse();
+      }
+    }
+  }
+
+  // Unknowns. Slide nodes keep the coordinate normal to their plane: only axis-aligned planes.
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0), wide(fixed.size(), 0);
+  for (std::size_t i = 0; i < input.n_nodes(); ++i) {
+    const bool orphan = topology.node_cell_offset[i + 1] == topology.node_cell_offset[i];
+    const NodeRole role = bc.role[i];
+    for (int k = 0; k < d; ++k) {
+      const std::size_t dof = static_cast<std::size_t>(d) * i + static_cast<std::size_t>(k);
+      const bool normal_k = role == NodeRole::Slide && std::abs(bc.normal(k, static_cast<Eigen::Index>(i))) > 0.5;
+      fixed[dof] = orphan || role == NodeRole::Fixed || role == NodeRole::Prescribed || normal_k;
+      wide[dof] = orphan || role == NodeRole::Fixed || normal_k;
+    }
+    if (role == NodeRole::Slide && (bc.normal.col(static_cast<Eigen::Index>(i)).cwiseAbs().maxCoeff() < 1.0 - 1e-12))
+      throw InputError("untangle: node " + std::to_string(i + 1) +
+                       " slides on a plane that is not normal to a coordinate axis; untangle supports x, y or z = const");
+  }
+  dofs_ = DofMap::from_mask(d, fixed);
+  wide_dofs_ = DofMap::from_mask(d, wide);
+  assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
+  component_.resize(dofs_.n_free());
+  for (std::size_t j = 0; j < dofs_.n_free(); ++j) component_[j] = dofs_.free_dofs()[j] % d;
+  for (const CellBlock& block : input.cells)
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      bool none = true;
+      for (int a = 0; a < block.n_nodes_per_cell(); ++a) none = none && dofs_.first(block.cell(c)[a]) == dofs_.first(block.cell(c)[a] + 1);
+      all_fixed_.push_back(none);
+    }
+  x_ = input.x;
+}
+
+template <int d>
+void UntangleProblem<d>::scale_off_diagonal(Assembly& out) const {
+  // γ relaxes the couplings between different coordinates (paper 001 §4): a convex
+  // combination of the Hessian and its coordinate-block diagonal, so PSD stays PSD.
+  if (gamma_ == 1.0) return;
+  Eigen::SparseMatrix<double>& H = out.hessian;
+  for (Eigen::Index j = 0; j < H.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it)
+      if (component_[static_cast<std::size_t>(it.row())] != component_[static_cast<std::size_t>(j)]) it.valueRef() *= gamma_;
+}
+
+template <int d>
+void UntangleProblem<d>::evaluate(HessianMode mode, Assembly& out) {
+  AssemblyOptions o;
+  o.want = Want::Hessian;
+  o.hessian = mode;
+  o.threads = threads_;
+  assembler_->assemble(metric_, x_, o, out);
+  if (std::isfinite(out.value)) scale_off_diagonal(out);
+}
+
+template <int d>
+double UntangleProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
+  trial_ = x_;
+  dofs_.add_step(p, alpha, trial_);
+  return assembler_->value(metric_, trial_, {}, threads_);
+}
+
+template <int d>
+void UntangleProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
+  dofs_.add_step(p, alpha, x_);
+  last_step_ = alpha * p;
+}
+
+template <int d>
+typename UntangleProblem<d>::Measures UntangleProblem<d>::measure() const {
+  const EdgeQuality<d> plain({0.0, n_});
+  double v_min = std::numeric_limits<double>::infinity(), q_min = 1.0;
+  std::size_t inverted = 0;
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi) {
+    const CellBlock& block = mesh_->cells[bi];
+    const BlockTargets<d>& bt = targets_.blocks[bi];
+    const ShapeTable& table = *bt.table;
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    const int n = block.n_nodes_per_cell();
+#pragma omp parallel for num_threads(thread_count(threads_)) reduction(min : v_min, q_min) reduction(+ : inverted) schedule(static)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+      const auto X = gather<d>(x_, block.cell(static_cast<std::size_t>(c)), n);
+      bool bad = false;
+      for (int q = 0; q < table.n_points(); ++q) {
+        const MatT<d> T = X * table.grad(q) * bt.cell(static_cast<std::size_t>(c))[q].W_inv;
+        const double V = EdgeQuality<d>::volume(T);
+        v_min = std::min(v_min, V);
+        const double F = plain.eval(T, Want::Value).mu;
+        q_min = std::min(q_min, std::isfinite(F) ? std::pow(F, 1.0 / n_) : 0.0);
+        bad = bad || !(V > 0.0);
+      }
+      inverted += bad ? 1 : 0;
+    }
+  }
+  return {v_min, q_min, inverted};
+}
+
+template <int d>
+std::size_t UntangleProblem<d>::stuck_inverted() const {
+  std::size_t count = 0, cell = 0;
+  for (const CellBlock& block : mesh_->cells)
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++cell)
+      if (all_fixed_[cell] && !(min_jacobian_det(block.type, block.order, gather<d>(x_, block.cell(c), block.n_nodes_per_cell())) > 0.0))
+        ++count;
+  return count;
+}
+
+template <int d>
+double UntangleProblem<d>::delta_increment(const Eigen::VectorXd& dx) const {
+  Eigen::MatrixXd dX = Eigen::MatrixXd::Zero(d, x_.cols());
+  if (dx.size() > 0) dofs_.add_step(dx, 1.0, dX);
+  // A serial sum: the same δ for every thread count.
+  double F_d = 0.0, F_dd = 0.0, F_dx = 0.0;
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi) {
+    const CellBlock& block = mesh_->cells[bi];
+    const BlockTargets<d>& bt = targets_.blocks[bi];
+    const ShapeTable& table = *bt.table;
+    const int n = block.n_nodes_per_cell();
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const auto X = gather<d>(x_, block.cell(c), n);
+      const auto dXc = gather<d>(dX, block.cell(c), n);
+      for (int q = 0; q < table.n_points(); ++q) {
+        const QuadratureTarget<d>& t = bt.cell(c)[q];
+        const Eigen::Matrix<double, Eigen::Dynamic, d> B = table.grad(q) * t.W_inv;
+        const auto D = metric_.delta_derivatives(X * B, dXc * B);
+        F_d += t.weight * D.d_delta;
+        F_dd += t.weight * D.d2_delta;
+        F_dx += t.weight * D.d2_delta_dT;
+      }
+    }
+  }
+  // Without positive curvature in δ the Newton estimate means nothing: the caller's β bound
+  // then decides alone.
+  if (!(F_dd > 0.0) || !std::isfinite(F_d + F_dx)) return std::numeric_limits<double>::infinity();
+  return -(F_d + F_dx) / F_dd;
+}
+
+template <int d>
+bool UntangleProblem<d>::predict(const Eigen::MatrixXd& target, LinearSolver& solver, Eigen::MatrixXd& increment) {
+  if (dofs_.n_free() == 0) return false;
+  if (!wide_assembler_) wide_assembler_ = std::make_unique<EnergyAssembler<d>>(*mesh_, *topology_, targets_, wide_dofs_);
+  // K_ib Δx_b: the Hessian over the free and the prescribed DOFs times the boundary motion.
+  AssemblyOptions o;
+  o.want = Want::Hessian;
+  o.hessian = HessianMode::Exact;
+  o.threads = threads_;
+  Assembly wide;
+  wide_assembler_->assemble(metric_, x_, o, wide);
+  if (!std::isfinite(wide.value)) return false;
+  Eigen::VectorXd motion = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(wide_dofs_.n_free()));
+  for (std::size_t i = 0; i < bc_->n_nodes(); ++i) {
+    if (bc_->role[i] != NodeRole::Prescribed) continue;
+    for (int k = 0; k < d; ++k) {
+      const std::int32_t w = wide_dofs_.reduced(static_cast<std::size_t>(d) * i + static_cast<std::size_t>(k));
+      if (w >= 0) motion[w] = target(k, static_cast<Eigen::Index>(i)) - x_(k, static_cast<Eigen::Index>(i));
+    }
+  }
+  const Eigen::VectorXd coupling = wide.hessian * motion;
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(dofs_.n_free()));
+  for (std::size_t j = 0; j < dofs_.n_free(); ++j) rhs[static_cast<Eigen::Index>(j)] = -coupling[wide_dofs_.reduced(static_cast<std::size_t>(dofs_.free_dofs()[j]))];
+  // K_ii: the exact Hessian, or its SPD projection where the exact one is not positive definite.
+  Assembly a;
+  o.want = Want::Hessian;
+  assembler_->assemble(metric_, x_, o, a);
+  if (!solver.factorize(a.hessian)) {
+    o.hessian = HessianMode::Projected;
+    assembler_->assemble(metric_, x_, o, a);
+    if (!solver.factorize(a.hessian)) return false;
+  }
+  Eigen::VectorXd dx;
+  if (!solver.solve(rhs, dx).ok) return false;
+  increment = Eigen::MatrixXd::Zero(d, x_.cols());
+  dofs_.add_step(dx, 1.0, increment);
+  return true;
+}
+
+template class UntangleProblem<2>;
+template class UntangleProblem<3>;
+
+}  // namespace meshmorph
