@@ -113,7 +113,12 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   Report report;
   report.method = "untangle";
   if (c) report.case_file = a.input;
-  Untangler untangler(input, topology, bc, options);
+  std::unique_ptr<Untangler> untangler;
+  try {
+    untangler = std::make_unique<Untangler>(input, topology, bc, options);
+  } catch (const InputError& e) {
+    throw InputError(a.input + ": " + e.what());
+  }
   Eigen::MatrixXd x = input.x;
   IterationCounts counts;
   std::size_t initial_inverted = 0;
@@ -121,7 +126,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   report.converged = true;
   for (int s = 1; s <= steps; ++s) {
     const Eigen::MatrixXd target = motion ? motion->at(static_cast<double>(s) / steps) : input.x;
-    const UntangleResult r = untangler.solve(target, x, s);
+    const UntangleResult r = untangler->solve(target, x, s);
     if (s == 1) initial_inverted = r.initial_inverted;
     counts.outer += r.delta_updates;
     counts.nonlinear += 1;
