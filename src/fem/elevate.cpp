@@ -33,6 +33,8 @@ struct Elevator {
   std::unordered_map<NodeKey, std::int32_t, NodeKeyHash> created;
   std::vector<Eigen::VectorXd> positions;          // new nodes, in creation order
   std::int32_t n_kept = 0;
+  std::vector<const Eigen::VectorXd*> fields;      // in.node_fields, in map order
+  std::vector<std::vector<double>> field_values;   // per field: values at the new nodes
 
   CellBlock elevate(const CellBlock& b) {
     if (b.type == ElementType::Point || b.order == order) return renumbered(b);
@@ -68,7 +70,15 @@ struct Elevator {
           key[static_cast<std::size_t>(2 * t + 1)] = terms[static_cast<std::size_t>(t)].second;
         }
         auto [it, fresh] = created.try_emplace(key, n_kept + static_cast<std::int32_t>(positions.size()));
-        if (fresh) positions.push_back(X * table.N.col(j));
+        if (fresh) {
+          positions.push_back(X * table.N.col(j));
+          // Fields are interpolated like the coordinates: the old cell's basis at the new node.
+          for (std::size_t f = 0; f < fields.size(); ++f) {
+            double value = 0;
+            for (int a = 0; a < n_old; ++a) value += (*fields[f])(v[a]) * table.N(a, j);
+            field_values[f].push_back(value);
+          }
+        }
         w[j] = it->second;
       }
     }
@@ -95,7 +105,13 @@ Mesh elevate_order(const Mesh& mesh, int order) {
 
   // Keep every node except the high-order nodes of elements that are elevated: those are
   // replaced by the nodes of the new order.
-  Elevator e{mesh, order, std::vector<std::int32_t>(mesh.n_nodes(), 0), {}, {}, 0};
+  Elevator e{mesh, order, std::vector<std::int32_t>(mesh.n_nodes(), 0), {}, {}, 0, {}, {}};
+  for (const auto& [name, values] : mesh.node_fields) {
+    MESHMORPH_CHECK(static_cast<std::size_t>(values.size()) == mesh.n_nodes(),
+                    "elevate_order: node field '" + name + "' does not have one value per node");
+    e.fields.push_back(&values);
+  }
+  e.field_values.resize(e.fields.size());
   for (const auto& blocks : {&mesh.cells, &mesh.facets})
     for (const auto& b : *blocks) {
       if (b.order == order || b.type == ElementType::Point) continue;
@@ -124,6 +140,15 @@ Mesh elevate_order(const Mesh& mesh, int order) {
   for (std::size_t k = 0; k < e.positions.size(); ++k) {
     out.x.col(e.n_kept + static_cast<Eigen::Index>(k)) = e.positions[k];
     out.node_tags[static_cast<std::size_t>(e.n_kept) + k] = max_tag + 1 + static_cast<std::int64_t>(k);
+  }
+  std::size_t f = 0;
+  for (const auto& [name, values] : mesh.node_fields) {
+    Eigen::VectorXd& to = out.node_fields[name];
+    to.resize(out.x.cols());
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+      if (e.old_to_new[i] >= 0) to(e.old_to_new[i]) = values(static_cast<Eigen::Index>(i));
+    for (std::size_t k = 0; k < e.positions.size(); ++k) to(e.n_kept + static_cast<Eigen::Index>(k)) = e.field_values[f][k];
+    ++f;
   }
   return out;
 }

@@ -3,7 +3,10 @@
 // uniform bucket grid over the cells' bounding boxes (about one cell per bucket); inside a
 // candidate cell the reference coordinates ξ come from Newton on x(ξ) = x (exact in one
 // step for straight simplices). A point in no cell takes the cell with the nearest
-// centroid (a linear scan) and its polynomial extended beyond the cell.
+// centroid (a linear scan) and its polynomial extended beyond the cell. The Hessian
+// differences the gradient of the polynomial of the cell that holds x, evaluated beyond
+// that cell where the stencil leaves it, so that it never straddles the kinks between
+// cells (a P1 field on simplices has Hessian 0).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,6 +36,9 @@ class BackgroundField final : public LevelSetNode {
       if (topological_dim(b.type) == mesh_.dim)
         for (std::size_t c = 0; c < b.n_cells(); ++c) cells_.push_back({&b, c});
     build_grid();
+    // The difference step's length scale ℓ: the diagonal of the mesh's bounding box.
+    length_scale_ = (hi_.rowwise().maxCoeff() - lo_.rowwise().minCoeff()).norm();
+    if (!(length_scale_ > 0)) length_scale_ = 1;
   }
 
   double value(const Vec& x) const override {
@@ -40,6 +46,16 @@ class BackgroundField final : public LevelSetNode {
     return evaluate(x, g, false);
   }
   double value_gradient(const Vec& x, Vec& g) const override { return evaluate(x, g, true); }
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    Vec xi;
+    const CellRef c = locate(x, xi);
+    const auto gradient = [&](const Vec& y) {
+      Vec eta;
+      invert(c, y, eta);
+      return cell_gradient(c, eta);
+    };
+    return hessian_by_differences(gradient, x, difference_step(x, length_scale_));
+  }
 
  private:
   Eigen::MatrixXd coordinates(const CellRef& c) const {
@@ -69,20 +85,26 @@ class BackgroundField final : public LevelSetNode {
     return std::max(0.0, xi.cwiseAbs().maxCoeff() - 1);
   }
 
-  double evaluate(const Vec& x, Vec& g, bool want_gradient) const {
-    Vec xi;
-    const CellRef c = locate(x, xi);
-    const LagrangeBasis& basis = lagrange_basis(c.block->type, c.block->order);
+  Vec cell_values(const CellRef& c) const {
     const int n = c.block->n_nodes_per_cell();
     Vec phi(n);
     const std::int32_t* nodes = c.block->cell(c.index);
     for (int a = 0; a < n; ++a) phi(a) = values_(nodes[a]);
-    if (want_gradient) {
-      const Eigen::MatrixXd G = basis.gradients(xi);
-      const Eigen::MatrixXd J = coordinates(c) * G;
-      g = J.transpose().partialPivLu().solve(G.transpose() * phi);
-    }
-    return basis.values(xi).dot(phi);
+    return phi;
+  }
+
+  // ∇σ = J⁻ᵀ Σ φ_a ∇_ξ N_a at reference point ξ of cell c.
+  Vec cell_gradient(const CellRef& c, const Vec& xi) const {
+    const Eigen::MatrixXd G = lagrange_basis(c.block->type, c.block->order).gradients(xi);
+    const Eigen::MatrixXd J = coordinates(c) * G;
+    return J.transpose().partialPivLu().solve(G.transpose() * cell_values(c));
+  }
+
+  double evaluate(const Vec& x, Vec& g, bool want_gradient) const {
+    Vec xi;
+    const CellRef c = locate(x, xi);
+    if (want_gradient) g = cell_gradient(c, xi);
+    return lagrange_basis(c.block->type, c.block->order).values(xi).dot(cell_values(c));
   }
 
   CellRef locate(const Vec& x, Vec& xi) const {
@@ -171,6 +193,7 @@ class BackgroundField final : public LevelSetNode {
   Vec origin_, cell_size_;
   std::vector<std::size_t> resolution_;
   std::vector<std::int32_t> bucket_start_, bucket_cells_;
+  double length_scale_ = 1;
 };
 
 }  // namespace
@@ -179,7 +202,14 @@ NodePtr make_background_field(Mesh mesh, Eigen::VectorXd values, const std::stri
   if (static_cast<std::size_t>(values.size()) != mesh.n_nodes())
     throw InputError(where + ": expected one field value per node (" + std::to_string(mesh.n_nodes()) +
                      "), found " + std::to_string(values.size()));
-  if (!values.allFinite()) throw InputError(where + ": the nodal field has non-finite values");
+  for (Eigen::Index i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values(i))) {
+      const auto node = static_cast<std::size_t>(i);
+      throw InputError(where + ": the value at node " +
+                       (mesh.node_tags.size() == mesh.n_nodes() ? std::to_string(mesh.node_tags[node])
+                                                                : "index " + std::to_string(node)) +
+                       " is not finite (" + std::to_string(values(i)) + ")");
+    }
   bool has_cells = false;
   for (const auto& b : mesh.cells) has_cells |= topological_dim(b.type) == mesh.dim && b.n_cells() > 0;
   if (!has_cells) throw InputError(where + ": the background mesh has no cells");

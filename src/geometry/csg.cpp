@@ -38,6 +38,14 @@ class Csg final : public LevelSetNode {
     return v;
   }
 
+  // The active operand's Hessian, with the gradient's tie rule.
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const std::size_t k = active(x);
+    Eigen::MatrixXd H = operands_[k]->hessian(x);
+    if (op_ == CsgOp::Difference && k == 1) H = -H;
+    return H;
+  }
+
   std::optional<Vec> closest_point(const Vec& x) const override {
     const Eigen::Index dim = x.size();
     std::vector<std::optional<Vec>> own(leaves_.size());

@@ -67,7 +67,7 @@ class Expression final : public LevelSetNode {
   double value_gradient(const Vec& x, Vec& g) const override {
     auto p = acquire();
     const double v = eval(*p, x);
-    const double h = 2e-4 * std::max(x.norm(), length_scale_);
+    const double h = difference_step(x, length_scale_);
     g.resize(x.size());
     Vec y = x;
     for (Eigen::Index k = 0; k < x.size(); ++k) {
@@ -80,6 +80,17 @@ class Expression final : public LevelSetNode {
     }
     release(std::move(p));
     return v;
+  }
+
+  // Differences of the difference gradient: rounding ≈ 1.5·δg/h with δg ≈ 1e-12·|σ|/ℓ,
+  // so about 1e-8 relative (docs/level-sets.md).
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const auto gradient = [this](const Vec& y) {
+      Vec g;
+      value_gradient(y, g);
+      return g;
+    };
+    return hessian_by_differences(gradient, x, difference_step(x, length_scale_));
   }
 
  private:

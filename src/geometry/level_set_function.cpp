@@ -114,10 +114,7 @@ NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx) {
         } else {
           static_assert(std::is_same_v<S, MeshLevelSet>);
           const Checker c(ctx, ls.key_path, "mesh");
-          // The io layer keeps no point data yet (Mesh has no nodal fields), so a field
-          // cannot be read from a file; LevelSetFunction(Mesh, values) takes it from memory.
-          c.fail("field", "cannot read nodal field \"" + s.field + "\" from " + s.file.string() +
-                              ": reading nodal fields from mesh files is not supported yet");
+          return load_background_field(s, ctx.dim, c.where());
         }
       },
       ls.shape);
@@ -146,6 +143,11 @@ Eigen::VectorXd LevelSetFunction::gradient(const Eigen::Ref<const Eigen::VectorX
   Eigen::VectorXd g;
   root_->value_gradient(x, g);
   return g;
+}
+
+Eigen::MatrixXd LevelSetFunction::hessian(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  MESHMORPH_CHECK(x.size() == dim_, "LevelSetFunction::hessian: point of the wrong dimension");
+  return root_->hessian(x);
 }
 
 std::optional<Eigen::VectorXd> LevelSetFunction::closest_point(const Eigen::Ref<const Eigen::VectorXd>& x) const {

@@ -2,9 +2,12 @@
 // Closed forms of the analytic level sets. Each σ is the exact signed distance, so the
 // closest point is x − σ(x)·∇σ(x) wherever ∇σ is defined; the degenerate points (a
 // sphere's centre, a cylinder's axis, ...) pick a fixed direction so results are
-// deterministic.
+// deterministic. The Hessian of a distance is the derivative of its unit gradient n,
+// (I − n nᵀ)·(∂(x − foot point)/∂x)/distance; there it is NaN.
 #include <cmath>
 #include <memory>
+
+#include <Eigen/Geometry>
 
 #include "geometry/detail/level_set_node.h"
 
@@ -39,6 +42,13 @@ class Sphere final : public LevelSetNode {
     g = direction_or_first_axis(x - c_);
     return (x - c_).norm() - r_;
   }
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const Vec v = x - c_;
+    const double r = v.norm();
+    if (!(r > 0)) return undefined_hessian(x.size());
+    const Vec n = v / r;
+    return (Eigen::MatrixXd::Identity(x.size(), x.size()) - n * n.transpose()) / r;
+  }
   std::optional<Vec> closest_point(const Vec& x) const override {
     return Vec(c_ + r_ * direction_or_first_axis(x - c_));
   }
@@ -56,6 +66,14 @@ class Cylinder final : public LevelSetNode {
     const Vec v = radial(x);
     g = direction(v);
     return v.norm() - r_;
+  }
+  // (I − a aᵀ − n nᵀ)/|v⊥|: the axis direction and the normal are flat.
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const Vec v = radial(x);
+    const double r = v.norm();
+    if (!(r > 0)) return undefined_hessian(x.size());
+    const Vec n = v / r;
+    return (Eigen::MatrixXd::Identity(x.size(), x.size()) - a_ * a_.transpose() - n * n.transpose()) / r;
   }
   std::optional<Vec> closest_point(const Vec& x) const override {
     const Vec v = radial(x);
@@ -84,6 +102,7 @@ class Plane final : public LevelSetNode {
     g = n_;
     return (x - p_).dot(n_);
   }
+  Eigen::MatrixXd hessian(const Vec& x) const override { return Eigen::MatrixXd::Zero(x.size(), x.size()); }
   std::optional<Vec> closest_point(const Vec& x) const override { return Vec(x - (x - p_).dot(n_) * n_); }
 
  private:
@@ -115,6 +134,20 @@ class Box final : public LevelSetNode {
     g(k) = s(k);
     return m;
   }
+  // Inside, σ is affine near x (the nearest face): 0. Outside, σ = |o| with o the offsets
+  // beyond the active faces A = {k : q_k > 0}: (P_A − g gᵀ)/σ, P_A = diag(1 on A); 0 in a
+  // face region (A = {k}, g = ±e_k).
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const Vec v = x - c_;
+    const Vec q = v.cwiseAbs() - h_;
+    const Vec outside = q.cwiseMax(0.0);
+    const double d = outside.norm();
+    if (!(d > 0)) return Eigen::MatrixXd::Zero(x.size(), x.size());
+    const Vec s = v.unaryExpr([](double t) { return t < 0 ? -1.0 : 1.0; });
+    const Vec g = s.cwiseProduct(outside) / d;
+    const Vec active = q.unaryExpr([](double t) { return t > 0 ? 1.0 : 0.0; });
+    return (Eigen::MatrixXd(active.asDiagonal()) - g * g.transpose()) / d;
+  }
   std::optional<Vec> closest_point(const Vec& x) const override {
     const Vec v = x - c_;
     const Vec q = v.cwiseAbs() - h_;
@@ -142,6 +175,20 @@ class Torus final : public LevelSetNode {
     const Vec k = core_point(x);
     g = tube_direction(x, k);
     return (x - k).norm() - r_;
+  }
+  // The foot point k moves with x along the core circle's tangent t = a × u at the rate
+  // R/ρ (ρ = distance from the axis), so ∂(x − k)/∂x = I − (R/ρ) t tᵀ and, as t ⊥ n,
+  // ∇²σ = (I − n nᵀ − (R/ρ) t tᵀ)/|x − k|.
+  Eigen::MatrixXd hessian(const Vec& x) const override {
+    const Vec v = x - c_;
+    const Vec radial = v - v.dot(a_) * a_;
+    const double rho = radial.norm();
+    const Vec d = x - core_point(x);
+    const double dist = d.norm();
+    if (!(rho > 0) || !(dist > 0)) return undefined_hessian(x.size());
+    const Vec n = d / dist;
+    const Eigen::Vector3d t = Eigen::Vector3d(a_).cross(Eigen::Vector3d(radial / rho));
+    return (Eigen::Matrix3d::Identity() - n * n.transpose() - (R_ / rho) * t * t.transpose()) / dist;
   }
   std::optional<Vec> closest_point(const Vec& x) const override {
     const Vec k = core_point(x);

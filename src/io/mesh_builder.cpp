@@ -58,6 +58,11 @@ Mesh MeshBuilder::finish(const std::string& where) {
   for (std::size_t j = 0; j < n; ++j)
     for (int k = 0; k < mesh.dim; ++k) mesh.x(k, static_cast<Eigen::Index>(j)) = xyz[3 * j + static_cast<std::size_t>(k)];
   mesh.node_tags = std::move(tags);
+  for (auto& [name, values] : node_fields) {
+    MESHMORPH_CHECK(values.size() == n, "node field \"" + name + "\" does not cover every node");
+    mesh.node_fields.emplace(name, Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(n)));
+  }
+  node_fields.clear();
   for (CellBlock& b : blocks_) {
     if (b.nodes.empty()) continue;
     (topological_dim(b.type) == mesh.dim ? mesh.cells : mesh.facets).push_back(std::move(b));

@@ -101,7 +101,7 @@ void skip_section(Cursor& c, std::string_view name, std::size_t at) {
 
 Mesh read_msh(const std::filesystem::path& path) {
   const std::string data = detail::read_file(path);
-  detail::MshState s{detail::Cursor(path, data), {}, {}, false, false, {}};
+  detail::MshState s{detail::Cursor(path, data), {}, {}, false, false, {}, {}};
   detail::Cursor& c = s.cur;
   if (!c.skip_space()) c.fail_at(0, "empty file");
   c.expect("$MeshFormat");
@@ -123,6 +123,9 @@ Mesh read_msh(const std::filesystem::path& path) {
       if (s.have_nodes) c.fail_at(at, "second $Nodes section");
       version == 41 ? detail::read_msh41_nodes(s) : detail::read_msh22_nodes(s);
       s.index_nodes(at);
+    } else if (name == "NodeData") {
+      if (!s.have_nodes) c.fail_at(at, "$NodeData before $Nodes");
+      detail::read_node_data(s, at);
     } else if (name == "Elements") {
       if (!s.have_nodes) c.fail_at(at, "$Elements before $Nodes");
       version == 41 ? detail::read_msh41_elements(s) : detail::read_msh22_elements(s);
@@ -130,10 +133,11 @@ Mesh read_msh(const std::filesystem::path& path) {
       detail::skip_section(c, name, at);
     }
     // After binary data, the end marker is located by byte offset.
-    c.binary = s.binary && (name == "Nodes" || name == "Elements" || name == "Entities");
+    c.binary = s.binary && (name == "Nodes" || name == "Elements" || name == "Entities" || name == "NodeData");
     c.expect("$End" + std::string(name));
     c.binary = false;
   }
+  detail::finish_node_data(s);
   return s.builder.finish(c.where(data.size()));
 }
 

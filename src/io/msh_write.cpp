@@ -274,10 +274,47 @@ void write_msh22(detail::OutBuffer& o, const Mesh& mesh, const Layout& L, bool b
   o << "$EndElements\n";
 }
 
+// Fails before anything is written when a node field cannot be stored.
+void check_node_fields(const Mesh& mesh, bool binary) {
+  for (const auto& [name, values] : mesh.node_fields) {
+    MESHMORPH_CHECK(static_cast<std::size_t>(values.size()) == mesh.n_nodes(),
+                    "write_msh: node field '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                        std::to_string(mesh.n_nodes()) + " nodes");
+    if (name.empty() || name.find_first_of("\"\n\r") != std::string::npos)
+      throw InputError("MSH $NodeData cannot hold the node field name '" + name + "' (empty, or with a quote or line break)");
+  }
+  if (!binary || mesh.node_fields.empty()) return;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (node_tag(mesh, i) > std::numeric_limits<std::int32_t>::max())
+      throw InputError("binary MSH $NodeData holds node tags up to 2^31-1 only (Gmsh writes them as int); node tag " +
+                       std::to_string(node_tag(mesh, i)));
+}
+
+// One $NodeData section per field, laid out as Gmsh writes it: one header item per line,
+// time step 0 at time 0, then (tag, value) records; binary tags are int32, as in Gmsh.
+void write_node_data(detail::OutBuffer& o, const Mesh& mesh, bool binary) {
+  const std::size_t n = mesh.n_nodes();
+  for (const auto& [name, values] : mesh.node_fields) {
+    o << "$NodeData\n1\n\"" << name << "\"\n1\n0\n3\n0\n1\n" << n << '\n';
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v = values(static_cast<Eigen::Index>(i));
+      if (binary) {
+        o.raw(static_cast<std::int32_t>(node_tag(mesh, i)));
+        o.raw(v);
+      } else {
+        o << node_tag(mesh, i) << ' ' << v << '\n';
+      }
+    }
+    if (binary) o << '\n';
+    o << "$EndNodeData\n";
+  }
+}
+
 }  // namespace
 
 void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary) {
   MESHMORPH_CHECK(version == 41 || version == 22, "write_msh: version must be 41 or 22");
+  check_node_fields(mesh, binary);
   const Layout L = layout_of(mesh);
   detail::OutBuffer o(out);
   write_header(o, mesh, version, binary);
@@ -288,6 +325,7 @@ void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary) {
   } else {
     write_msh22(o, mesh, L, binary);
   }
+  write_node_data(o, mesh, binary);
   o.flush();
 }
 

@@ -100,7 +100,8 @@ std::string payload(const VtuFile& f, const pugi::xml_node& node, std::string_vi
 
 // Values of a DataArray converted to T; `expected` values (or any count when unset).
 template <class T>
-std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected) {
+std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected,
+                          bool allow_nonfinite) {
   const std::string_view name = node.attribute("Name").as_string();
   const std::string_view type = node.attribute("type").as_string();
   const std::string_view format = node.attribute("format").as_string("ascii");
@@ -148,16 +149,19 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::opt
     if (bytes.size() % size != 0) f.fail(node, "DataArray '" + std::string(name) + "' size is not a multiple of its type");
     convert(bytes, type, values);
   }
-  if constexpr (std::is_floating_point_v<T>)
-    for (const T v : values)
-      if (!std::isfinite(v)) f.fail(node, "DataArray '" + std::string(name) + "' holds a non-finite value");
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!allow_nonfinite)
+      for (const T v : values)
+        if (!std::isfinite(v)) f.fail(node, "DataArray '" + std::string(name) + "' holds a non-finite value");
+  }
   if (expected && values.size() != *expected)
     f.fail(node, "DataArray '" + std::string(name) + "' holds " + std::to_string(values.size()) + " values, expected " +
                      std::to_string(*expected));
   return values;
 }
 
-template std::vector<double> read_array<double>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>);
-template std::vector<std::int64_t> read_array<std::int64_t>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>);
+template std::vector<double> read_array<double>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>, bool);
+template std::vector<std::int64_t> read_array<std::int64_t>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>,
+                                                            bool);
 
 }  // namespace meshmorph::detail

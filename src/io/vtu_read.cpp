@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <optional>
+#include <set>
+#include <string>
 #include <string_view>
 
 #include <pugixml.hpp>
@@ -67,7 +70,37 @@ std::optional<VtkCell> vtk_cell(int code) {
   }
 }
 
-void read_piece(const VtuFile& f, const pugi::xml_node& piece, detail::MeshBuilder& builder) {
+bool is_numeric_type(std::string_view type) {
+  for (const std::string_view t : {"Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64", "UInt64", "Float32", "Float64"})
+    if (type == t) return true;
+  return false;
+}
+
+// Scalar numeric PointData arrays (NumberOfComponents absent or 1) → node fields; vector and
+// tensor arrays, unnamed ones and String or Bit arrays are not kept. Every piece must hold
+// the same scalar arrays, so that each field has a value at every node.
+void read_point_data(const VtuFile& f, const pugi::xml_node& piece, std::size_t n_points, bool first_piece,
+                     detail::MeshBuilder& builder) {
+  const pugi::xml_node point_data = piece.child("PointData");
+  std::set<std::string, std::less<>> seen;
+  for (const pugi::xml_node a : point_data.children("DataArray")) {
+    const std::string name = a.attribute("Name").as_string();
+    if (name.empty() || a.attribute("NumberOfComponents").as_int(1) != 1 || !is_numeric_type(a.attribute("type").as_string()))
+      continue;
+    if (!seen.insert(name).second) f.fail(a, "PointData holds two arrays named '" + name + "'");
+    auto it = builder.node_fields.find(name);
+    if (!first_piece && it == builder.node_fields.end())
+      f.fail(a, "PointData array '" + name + "' is missing in the first Piece");
+    const std::vector<double> values = read_array<double>(f, a, n_points, true);
+    if (first_piece) it = builder.node_fields.emplace(name, std::vector<double>{}).first;
+    it->second.insert(it->second.end(), values.begin(), values.end());
+  }
+  if (!first_piece)
+    for (const auto& [name, values] : builder.node_fields)
+      if (!seen.count(name)) f.fail(point_data ? point_data : piece, "Piece has no PointData array '" + name + "' (the first Piece has one)");
+}
+
+void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece, detail::MeshBuilder& builder) {
   const long long n_points = piece.attribute("NumberOfPoints").as_llong(-1);
   const long long n_cells = piece.attribute("NumberOfCells").as_llong(-1);
   if (n_points < 0 || n_cells < 0) f.fail(piece, "Piece needs NumberOfPoints and NumberOfCells");
@@ -85,6 +118,7 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, detail::MeshBuild
       builder.first_nonzero_z = detail::location(f.path, f.text, static_cast<std::size_t>(points.offset_debug()), false);
   }
   builder.xyz.insert(builder.xyz.end(), xyz.begin(), xyz.end());
+  read_point_data(f, piece, np, first_piece, builder);
 
   const pugi::xml_node cells = piece.child("Cells");
   const pugi::xml_node conn_node = named_array(cells, "connectivity");
@@ -210,7 +244,11 @@ Mesh read_vtu(const std::filesystem::path& path) {
       builder.named_groups.push_back(PhysicalGroup{static_cast<int>(v[1]), static_cast<std::int32_t>(v[0]), a.attribute("Name").as_string()});
   }
   if (!grid.child("Piece")) f.fail(grid, "no Piece element");
-  for (pugi::xml_node piece : grid.children("Piece")) read_piece(f, piece, builder);
+  bool first_piece = true;
+  for (const pugi::xml_node piece : grid.children("Piece")) {
+    read_piece(f, piece, first_piece, builder);
+    first_piece = false;
+  }
   return builder.finish(detail::location(path, data, data.size(), false));
 }
 

@@ -38,11 +38,14 @@ constexpr std::string_view vtk_type_name() {
 }
 
 // One DataArray element with its values, ASCII or base64 (UInt64 byte count + data).
+// NumberOfComponents is omitted for scalars (VTK's default is 1), as meshio writes them:
+// meshio returns arrays that state it as n×1 instead of n.
 template <class T>
 void data_array(detail::OutBuffer& o, std::string_view name, int components, const std::vector<T>& values,
                 bool binary, std::string_view indent) {
-  o << indent << "<DataArray type=\"" << vtk_type_name<T>() << "\" Name=\"" << xml_escape(name)
-    << "\" NumberOfComponents=\"" << components << "\" format=\"" << (binary ? "binary" : "ascii") << "\">\n";
+  o << indent << "<DataArray type=\"" << vtk_type_name<T>() << "\" Name=\"" << xml_escape(name) << '"';
+  if (components != 1) o << " NumberOfComponents=\"" << components << '"';
+  o << " format=\"" << (binary ? "binary" : "ascii") << "\">\n";
   if (binary) {
     std::string bytes(sizeof(std::uint64_t) + values.size() * sizeof(T), '\0');
     const std::uint64_t size = values.size() * sizeof(T);
@@ -83,6 +86,10 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
   for (const auto& [name, values] : cell_data)
     MESHMORPH_CHECK(values.size() == n_cells, "write_vtu: cell_data '" + name + "' has " + std::to_string(values.size()) +
                                                   " values for " + std::to_string(n_cells) + " cells");
+  for (const auto& [name, values] : mesh.node_fields)
+    MESHMORPH_CHECK(static_cast<std::size_t>(values.size()) == mesh.n_nodes(),
+                    "write_vtu: node field '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                        std::to_string(mesh.n_nodes()) + " nodes");
   std::vector<double> points(3 * mesh.n_nodes(), 0.0);
   for (std::size_t j = 0; j < mesh.n_nodes(); ++j)
     for (int k = 0; k < mesh.dim; ++k) points[3 * j + static_cast<std::size_t>(k)] = mesh.x(k, static_cast<Eigen::Index>(j));
@@ -128,7 +135,14 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
   data_array(o, "connectivity", 1, connectivity, binary, "        ");
   data_array(o, "offsets", 1, offsets, binary, "        ");
   data_array(o, "types", 1, types, binary, "        ");
-  o << "      </Cells>\n      <CellData Scalars=\"group\">\n";
+  o << "      </Cells>\n";
+  if (!mesh.node_fields.empty()) {
+    o << "      <PointData>\n";
+    for (const auto& [name, values] : mesh.node_fields)
+      data_array(o, name, 1, std::vector<double>(values.data(), values.data() + values.size()), binary, "        ");
+    o << "      </PointData>\n";
+  }
+  o << "      <CellData Scalars=\"group\">\n";
   data_array(o, "group", 1, group, binary, "        ");
   data_array(o, "entity", 1, entity, binary, "        ");
   for (const auto& [name, values] : cell_data) {

@@ -47,4 +47,36 @@ done
 for name in unknown_group unreachable missing_row; do
   [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
 done
+# Projection onto a `mesh` level set read from a file: P2 triangles over [-1.2, 1.2]² with
+# the point data phi = |x| − 0.44, so the inner circle (r = 0.4) grows to about r = 0.44.
+awk 'BEGIN {
+  n = 24; h = 2.4 / n; m = 2 * n + 1
+  print "<?xml version=\"1.0\"?>"
+  print "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">"
+  printf "<UnstructuredGrid><Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n", m * m, 2 * n * n
+  print "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+  for (j = 0; j < m; j++) for (i = 0; i < m; i++) printf "%.17g %.17g 0\n", -1.2 + i * h / 2, -1.2 + j * h / 2
+  print "</DataArray></Points><Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
+  for (b = 0; b < n; b++) for (a = 0; a < n; a++) {
+    i = 2 * a; j = 2 * b
+    printf "%d %d %d %d %d %d\n", j*m+i, j*m+i+2, (j+2)*m+i+2, j*m+i+1, (j+1)*m+i+2, (j+1)*m+i+1
+    printf "%d %d %d %d %d %d\n", j*m+i, (j+2)*m+i+2, (j+2)*m+i, (j+1)*m+i+1, (j+2)*m+i+1, (j+1)*m+i
+  }
+  print "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">"
+  for (c = 1; c <= 2 * n * n; c++) printf "%d\n", 6 * c
+  print "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">"
+  for (c = 1; c <= 2 * n * n; c++) print 22
+  print "</DataArray></Cells><PointData><DataArray type=\"Float64\" Name=\"phi\" format=\"ascii\">"
+  for (j = 0; j < m; j++) for (i = 0; i < m; i++) {
+    x = -1.2 + i * h / 2; y = -1.2 + j * h / 2; printf "%.17g\n", sqrt(x * x + y * y) - 0.44
+  }
+  print "</DataArray></PointData></Piece></UnstructuredGrid></VTKFile>"
+}' > "$work/background.vtu"
+make_case mesh_field '[{"group": "inner", "project": {"mesh": {"file": "background.vtu", "field": "phi"}}}, {"group": "outer", "fixed": true}]'
+expect mesh_field 0
+[ "$(field "$work/mesh_field.json" valid)" = true ] || fail "mesh_field: report not valid"
+make_case mesh_field_missing '[{"group": "inner", "project": {"mesh": {"file": "background.vtu", "field": "psi"}}}]'
+expect mesh_field_missing 2 'boundary\[0\].project.mesh.field: .*background.vtu has no nodal field "psi" (its nodal fields: "phi")'
+[ ! -e "$work/mesh_field_missing.vtu" ] || fail "mesh_field_missing: a mesh was written"
+
 echo "morph CLI checks passed"

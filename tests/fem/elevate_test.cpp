@@ -2,6 +2,8 @@
 #include "meshmorph/fem/elevate.h"
 
 #include <algorithm>
+#include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +64,26 @@ TEST(Elevate, KeepsLinearNodesAndTagsAndRefusesToLower) {
   EXPECT_TRUE(std::equal(lin.node_tags.begin(), lin.node_tags.end(), p2.node_tags.begin()));
   EXPECT_EQ(p2.node_tags.back(), static_cast<std::int64_t>(p2.n_nodes()));
   EXPECT_THROW(elevate_order(p2, 1), std::invalid_argument);
+}
+
+// A field of the old order is interpolated exactly: (bi)linear on P1 cells, quadratic on
+// P2 triangles raised to P4.
+TEST(Elevate, InterpolatesNodeFieldsWithTheOldBasis) {
+  const auto field = [](const Eigen::VectorXd& x, int order) {
+    return order == 1 ? 0.5 + x(0) - 2 * x(1) : x(0) * x(1) - x(1) * x(1) + 0.25;
+  };
+  for (const auto& [type, from, to] : {std::tuple{ElementType::Triangle, 1, 3}, std::tuple{ElementType::Tetrahedron, 1, 2},
+                                       std::tuple{ElementType::Triangle, 2, 4}}) {
+    SCOPED_TRACE(std::string(name_of(type)) + " " + std::to_string(from) + " -> " + std::to_string(to));
+    Mesh m = structured_mesh(type, from, 2);
+    Eigen::VectorXd phi(m.x.cols());
+    for (Eigen::Index i = 0; i < phi.size(); ++i) phi(i) = field(m.x.col(i), from);
+    m.node_fields["phi"] = phi;
+    const Mesh e = elevate_order(m, to);
+    ASSERT_EQ(e.node_fields.count("phi"), 1u);
+    ASSERT_EQ(static_cast<std::size_t>(e.node_fields.at("phi").size()), e.n_nodes());
+    for (Eigen::Index i = 0; i < e.x.cols(); ++i) EXPECT_NEAR(e.node_fields.at("phi")(i), field(e.x.col(i), from), 1e-14);
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <vector>
 
@@ -13,6 +14,7 @@ namespace meshmorph::test {
 struct CompareOptions {
   bool node_tags = true;
   bool entities = true;
+  bool node_fields = true;  ///< same names and bit-identical values (NaN equals NaN)
   double tolerance = 0.0;  ///< max |Δx|; 0 = bit for bit
 };
 
@@ -21,6 +23,20 @@ inline std::vector<std::tuple<int, int, std::string>> sorted_groups(const Mesh& 
   for (const PhysicalGroup& p : m.groups) g.emplace_back(p.dim, p.tag, p.name);
   std::sort(g.begin(), g.end());
   return g;
+}
+
+/// Same field names, and values bit for bit (NaN matches NaN).
+inline void expect_node_fields_equal(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.node_fields.size(), b.node_fields.size());
+  for (auto ia = a.node_fields.begin(), ib = b.node_fields.begin(); ia != a.node_fields.end(); ++ia, ++ib) {
+    SCOPED_TRACE("node field " + ia->first);
+    EXPECT_EQ(ia->first, ib->first);
+    ASSERT_EQ(ia->second.size(), ib->second.size());
+    for (Eigen::Index i = 0; i < ia->second.size(); ++i) {
+      const double u = ia->second(i), v = ib->second(i);
+      EXPECT_TRUE(u == v || (std::isnan(u) && std::isnan(v))) << "node " << i << ": " << u << " vs " << v;
+    }
+  }
 }
 
 inline void expect_blocks_equal(const std::vector<CellBlock>& a, const std::vector<CellBlock>& b, bool entities) {
@@ -37,7 +53,7 @@ inline void expect_blocks_equal(const std::vector<CellBlock>& a, const std::vect
   }
 }
 
-/// Bit-for-bit comparison of coordinates, connectivity, tags and groups.
+/// Bit-for-bit comparison of coordinates, connectivity, tags, groups and node fields.
 inline void expect_meshes_equal(const Mesh& a, const Mesh& b, CompareOptions opt = {}) {
   ASSERT_EQ(a.dim, b.dim);
   ASSERT_EQ(a.x.rows(), b.x.rows());
@@ -62,6 +78,9 @@ inline void expect_meshes_equal(const Mesh& a, const Mesh& b, CompareOptions opt
     expect_blocks_equal(a.facets, b.facets, opt.entities);
   }
   EXPECT_EQ(sorted_groups(a), sorted_groups(b));
+  if (opt.node_fields) {
+    expect_node_fields_equal(a, b);
+  }
 }
 
 }  // namespace meshmorph::test

@@ -5,7 +5,8 @@
 Usage: meshio_reads_output.py WRITE_SAMPLES_EXE OUTDIR
 
 Checked for every sample: the number of points, the sum of the coordinates, the number of
-cells and facets (by topological dimension), and for .msh the physical tags.
+cells and facets (by topological dimension), the sum of the node field "phi" (VTU PointData,
+MSH $NodeData), and for .msh the physical tags.
 What meshio 5.0 cannot do (so not checked): read VTU files with version="2.2", which we
 write, as VTK does, whenever Lagrange hexahedra (order >= 2) are present; meshio also names
 VTU Lagrange cells by raw strings ("VTK_LAGRANGE_TRIANGLE"), without reordering them.
@@ -33,7 +34,7 @@ def main():
     subprocess.run([exe, outdir], check=True)
     failures, checked, skipped = [], 0, []
     for line in open(f"{outdir}/manifest.txt"):
-        name, family, order, dim, n_points, n_cells, n_facets, sx, sy, sz = line.split()
+        name, family, order, dim, n_points, n_cells, n_facets, sx, sy, sz, sphi = line.split()
         order, dim, n_points, n_cells, n_facets = map(int, (order, dim, n_points, n_cells, n_facets))
         if name.endswith(".vtu") and family == "hexahedron" and order >= 2:
             skipped.append(name)
@@ -50,6 +51,11 @@ def main():
             got = float(mesh.points[:, k].sum())
             if not math.isclose(got, float(expected), rel_tol=1e-12, abs_tol=1e-12):
                 failures.append(f"{name}: coordinate sum {k} is {got}, expected {expected}")
+        phi = mesh.point_data.get("phi")
+        if phi is None or phi.shape != (n_points,):
+            failures.append(f"{name}: point data 'phi' missing or of the wrong shape")
+        elif not math.isclose(float(phi.sum()), float(sphi), rel_tol=1e-12, abs_tol=1e-12):
+            failures.append(f"{name}: sum of 'phi' is {float(phi.sum())}, expected {sphi}")
         cells = sum(len(b.data) for b in mesh.cells if topological_dim(b.type) == dim)
         facets = sum(len(b.data) for b in mesh.cells if topological_dim(b.type) < dim)
         if (cells, facets) != (n_cells, n_facets):

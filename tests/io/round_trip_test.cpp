@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -47,6 +48,14 @@ TEST_P(MeshRoundTrip, Msh41ThenMsh22ThenVtuKeepEverything) {
   // Make the coordinates non-trivial doubles so that printing precision matters.
   for (Eigen::Index j = 0; j < m0.x.cols(); ++j)
     for (Eigen::Index k = 0; k < m0.x.rows(); ++k) m0.x(k, j) = m0.x(k, j) / 3.0 + 0.1 * std::sin(1.0 + static_cast<double>(j + k));
+  // Node fields: VTU PointData and MSH $NodeData, bit for bit, non-finite values included.
+  const Eigen::Index n = m0.x.cols();
+  m0.node_fields["phi"] = Eigen::VectorXd::LinSpaced(n, 0, 1).array().sin() / 7.0;
+  Eigen::VectorXd special = Eigen::VectorXd::Constant(n, 1e300);
+  special(0) = std::numeric_limits<double>::quiet_NaN();
+  special(1) = -std::numeric_limits<double>::infinity();
+  special(2) = std::numeric_limits<double>::denorm_min();
+  m0.node_fields["special value"] = special;
   const std::string tag = std::string(name_of(type)) + std::to_string(order) + (binary ? "b" : "a");
   const Mesh m1 = round_trip(m0, tag + ".msh", MeshFormat::Msh41, binary);
   {
@@ -88,6 +97,8 @@ TEST(MeshRoundTrip, SparseUnorderedNodeTagsSurviveMsh) {
   Mesh m = structured_mesh(ElementType::Tetrahedron, 2, 2);
   const auto n = static_cast<std::int64_t>(m.n_nodes());
   for (std::int64_t i = 0; i < n; ++i) m.node_tags[static_cast<std::size_t>(i)] = 1000000 + 7 * (n - i);
+  // $NodeData records are matched to the nodes through their tags.
+  m.node_fields["phi"] = m.x.row(0).transpose() + 0.5 * m.x.row(2).transpose();
   for (const auto format : {MeshFormat::Msh41, MeshFormat::Msh22})
     for (const bool binary : {false, true}) {
       SCOPED_TRACE(std::string(format == MeshFormat::Msh41 ? "4.1" : "2.2") + (binary ? " binary" : " ascii"));
@@ -99,8 +110,10 @@ TEST(MeshRoundTrip, SparseUnorderedNodeTagsSurviveMsh) {
 TEST(MeshRoundTrip, MeditKeepsLinearCellsAndReferences) {
   for (const ElementType t : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron, ElementType::Hexahedron}) {
     SCOPED_TRACE(std::string(name_of(t)));
-    const Mesh m = structured_mesh(t, 1, 2);
+    Mesh m = structured_mesh(t, 1, 2);
+    m.node_fields["phi"] = Eigen::VectorXd::Ones(m.x.cols());
     const Mesh r = round_trip(m, "linear.mesh", MeshFormat::Medit, false);
+    EXPECT_TRUE(r.node_fields.empty());  // Medit has no node data
     EXPECT_TRUE(m.x == r.x);
     ASSERT_EQ(r.cells.size(), 1u);
     EXPECT_EQ(r.cells[0].nodes, m.cells[0].nodes);

@@ -42,6 +42,22 @@ std::string bytes_of(const std::string& ascii) {
   return out;
 }
 
+// One value per node: j/4 − 3 (exact in Float32) or j (`fraction` = 0), as text.
+std::string point_values(const Mesh& m, int fraction) {
+  std::string s;
+  for (std::size_t j = 0; j < m.n_nodes(); ++j)
+    s += std::to_string(fraction ? static_cast<double>(j) / 4 - 3 : static_cast<double>(j)) + ' ';
+  return s;
+}
+
+Eigen::VectorXd values_of(const std::string& ascii) {
+  std::istringstream in(ascii);
+  std::vector<double> v;
+  double t;
+  while (in >> t) v.push_back(t);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
 enum class Mode { Inline, AppendedRaw, AppendedBase64 };
 
 std::string header(std::uint64_t v, bool header64) {
@@ -83,12 +99,13 @@ std::string make_vtu(const std::vector<std::vector<Array>>& pieces, const std::v
   std::string appended;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     xml += "<Piece NumberOfPoints=\"" + std::to_string(sizes[p].first) + "\" NumberOfCells=\"" + std::to_string(sizes[p].second) + "\">\n";
-    for (const char* section : {"Points", "Cells", "CellData"}) {
+    for (const char* section : {"Points", "Cells", "CellData", "PointData"}) {
       xml += std::string("<") + section + ">\n";
       for (const Array& a : pieces[p]) {
-        const bool in_section = a.name == "Points" ? std::string(section) == "Points"
-                                : a.name == "group" ? std::string(section) == "CellData"
-                                                    : std::string(section) == "Cells";
+        const bool in_section = a.name == "Points"          ? std::string(section) == "Points"
+                                : a.name == "group"         ? std::string(section) == "CellData"
+                                : a.name.starts_with("pd_") ? std::string(section) == "PointData"
+                                                            : std::string(section) == "Cells";
         if (!in_section) continue;
         const auto [head, body] = encode(a.bytes, header64, compressed);
         xml += "<DataArray type=\"" + a.type + "\" Name=\"" + a.name + "\" NumberOfComponents=\"" + std::to_string(a.components) + "\"";
@@ -118,6 +135,8 @@ std::string make_vtu(const std::vector<std::vector<Array>>& pieces, const std::v
 
 TEST(VtuEncodings, AppendedRawBase64AndZlibAllReadTheSameMesh) {
   const Mesh m = structured_mesh(ElementType::Tetrahedron, 2, 2);
+  Mesh unnamed = m;  // these files carry no FieldData, so the groups come back by number
+  for (PhysicalGroup& g : unnamed.groups) g.name.clear();
   std::ostringstream ascii;
   write_vtu(ascii, m, false);
   pugi::xml_document doc;
@@ -131,13 +150,17 @@ TEST(VtuEncodings, AppendedRawBase64AndZlibAllReadTheSameMesh) {
                                   {"connectivity", "Int32", 1, bytes_of<std::int32_t>(text("Cells", "connectivity"))},
                                   {"offsets", "Int64", 1, bytes_of<std::int64_t>(text("Cells", "offsets"))},
                                   {"types", "UInt8", 1, bytes_of<std::uint8_t>(text("Cells", "types"))},
-                                  {"group", "Int16", 1, bytes_of<std::int16_t>(text("CellData", "group"))}};
+                                  {"group", "Int16", 1, bytes_of<std::int16_t>(text("CellData", "group"))},
+                                  // Point data: scalars of several types become node fields, vectors do not.
+                                  {"pd_phi", "Float32", 1, bytes_of<float>(point_values(m, 1))},
+                                  {"pd_label", "UInt16", 1, bytes_of<std::uint16_t>(point_values(m, 0))},
+                                  {"pd_vector", "Float64", 3, bytes_of<double>(text("Points", "Points"))}};
+  unnamed.node_fields["pd_phi"] = values_of(point_values(m, 1));
+  unnamed.node_fields["pd_label"] = values_of(point_values(m, 0));
   const long n_points = piece.attribute("NumberOfPoints").as_llong();
   const long n_cells = piece.attribute("NumberOfCells").as_llong();
   const fs::path dir = fs::temp_directory_path() / ("meshmorph_vtu_enc_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  Mesh unnamed = m;  // these files carry no FieldData, so the groups come back by number
-  for (PhysicalGroup& g : unnamed.groups) g.name.clear();
   int variant = 0;
   for (const Mode mode : {Mode::Inline, Mode::AppendedRaw, Mode::AppendedBase64})
     for (const bool header64 : {false, true})
@@ -158,6 +181,8 @@ TEST(VtuEncodings, AppendedRawBase64AndZlibAllReadTheSameMesh) {
   ASSERT_EQ(two.cells.size(), 1u);
   EXPECT_EQ(two.cells[0].n_cells(), 2 * m.cells[0].n_cells());
   EXPECT_EQ(two.cells[0].nodes[m.cells[0].nodes.size()], m.cells[0].nodes[0] + static_cast<std::int32_t>(m.n_nodes()));
+  ASSERT_EQ(two.node_fields.count("pd_phi"), 1u);
+  EXPECT_EQ(two.node_fields.at("pd_phi").tail(static_cast<Eigen::Index>(m.n_nodes())), unnamed.node_fields.at("pd_phi"));
   fs::remove_all(dir);
 }
 

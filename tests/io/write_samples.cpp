@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
                               {"_22a.msh", MeshFormat::Msh22, false}, {"_22b.msh", MeshFormat::Msh22, true},
                               {"_a.vtu", MeshFormat::Vtu, false},     {"_b.vtu", MeshFormat::Vtu, true}};
   for (const auto& [type, order] : meshes) {
-    const Mesh m = structured_mesh(type, order, 2);
+    Mesh m = structured_mesh(type, order, 2);
+    // A node field, written as VTU PointData and MSH $NodeData.
+    m.node_fields["phi"] = (m.x.transpose() * Eigen::VectorXd::LinSpaced(m.dim, 1, m.dim)).array() + 0.5;
     std::size_t n_facets = 0;
     for (const CellBlock& b : m.facets) n_facets += b.n_cells();
     const Eigen::VectorXd sum = m.x.rowwise().sum();
@@ -42,10 +44,10 @@ int main(int argc, char** argv) {
       opt.format = v.format;
       opt.binary = v.binary;
       write_mesh(dir / name, m, opt);
-      // file, family, order, dim, points, cells, facets, sum x, sum y, sum z
+      // file, family, order, dim, points, cells, facets, sum x, sum y, sum z, sum phi
       manifest << name << ' ' << name_of(type) << ' ' << order << ' ' << m.dim << ' ' << m.n_nodes() << ' '
                << m.n_cells() << ' ' << n_facets << ' ' << sum(0) << ' ' << sum(1) << ' ' << (m.dim == 3 ? sum(2) : 0.0)
-               << '\n';
+               << ' ' << m.node_fields["phi"].sum() << '\n';
     }
   }
   return 0;

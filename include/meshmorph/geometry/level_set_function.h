@@ -36,22 +36,27 @@ struct LevelSetOptions {
 ///   step h = 2e-4·max(‖x‖, length_scale) (relative gradient error ≈ 1e-12 for smooth σ).
 /// - union / intersection / difference: σ = min / max / max(a, −b), ∇σ of the active
 ///   operand (the first one on ties).
-/// - mesh: a nodal field on a background mesh, interpolated with the cell's Lagrange basis.
+/// - mesh: a nodal field on a background mesh, interpolated with the cell's Lagrange basis;
+///   from a file, the mesh is read with read_mesh (io/mesh_io.h) and the field is one of its
+///   Mesh::node_fields (VTU PointData, MSH $NodeData).
 ///
 /// Immutable once built; copies share the compiled tree. Every member function may be
 /// called from several threads at once (expressions keep a locked pool of parsers, one
 /// per concurrent caller).
 class LevelSetFunction {
  public:
-  /// Compiles `ls` for points of dimension `dim` (2 or 3). Throws InputError whose message
-  /// names options.source and ls.key_path (of the operand at fault) when a vector has the
-  /// wrong length, a direction or size is zero, a 3D-only kind is used in 2D, an
-  /// expression does not compile, or a background mesh cannot be used.
+  /// Compiles `ls` for points of dimension `dim` (2 or 3); a `mesh` kind reads its file
+  /// here. Throws InputError whose message names options.source and ls.key_path (of the
+  /// operand at fault) when a vector has the wrong length, a direction or size is zero, a
+  /// 3D-only kind is used in 2D, an expression does not compile, or a background mesh
+  /// cannot be used: malformed file (with the reader's file and position), dimension other
+  /// than `dim`, no nodal field of that name (the message lists those there are), a
+  /// non-finite value (naming the node). IoError when the file cannot be read.
   LevelSetFunction(const LevelSet& ls, int dim, const LevelSetOptions& options = {});
 
   /// A `mesh` level set from memory: `values` (one per node of `background`) interpolated
-  /// with the Lagrange basis of each cell. Throws InputError when sizes do not match or the
-  /// mesh has no cells.
+  /// with the Lagrange basis of each cell. Throws InputError when sizes do not match, a
+  /// value is not finite (naming the node) or the mesh has no cells.
   LevelSetFunction(Mesh background, Eigen::VectorXd values);
 
   int dim() const { return dim_; }
@@ -62,6 +67,20 @@ class LevelSetFunction {
   /// ∇σ(x). Where σ is not differentiable (a sphere's centre, a box's medial planes) it is
   /// one of the one-sided gradients.
   Eigen::VectorXd gradient(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// ∇²σ(x), dim() × dim(), symmetric.
+  /// - sphere (circle) (I − n nᵀ)/‖x − c‖ with n = ∇σ; cylinder (I − a aᵀ − n nᵀ)/‖v⊥‖;
+  ///   plane 0; box 0 inside, (P_A − n nᵀ)/σ outside with P_A the projector on the axes
+  ///   beyond the box (0 beside a face); torus (I − n nᵀ − (R/ρ) t tᵀ)/‖x − k‖ with ρ the
+  ///   distance from the axis and t the core circle's tangent. Exact to rounding.
+  /// - expr and mesh: five-point central differences of ∇σ with the step of expression
+  ///   gradients, h = 2e-4·max(‖x‖, ℓ) (ℓ = length_scale; for a mesh field, the diagonal
+  ///   of the background's bounding box), symmetrized. A mesh field differences the
+  ///   gradient of the polynomial of the cell holding x (0 for P1 simplices).
+  /// - union / intersection / difference: the active operand's (the gradient's tie rule).
+  /// NaN entries where σ has no second derivative from any side: a sphere's centre, a
+  /// cylinder's axis, the torus's axis and core circle.
+  Eigen::MatrixXd hessian(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// The closest point p of the zero level set to x: σ(p) = 0 and x − p ∥ ∇σ(p) (or, at
   /// an edge or corner of a CSG, x − p in the span of the active operands' normals).

@@ -11,13 +11,15 @@ namespace meshmorph {
 /// Edges, Triangles, Quadrilaterals, Tetrahedra, Hexahedra (also spelled Hexaedra), End;
 /// the flag keywords Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles
 /// are skipped. Indices are 1-based; element references become physical tags (unnamed
-/// groups); vertex references are ignored. Curved (P2…) keywords and other keywords are
-/// an InputError ("file: line N: …").
+/// groups); vertex references are ignored. The mesh has no node fields (Medit keeps
+/// solutions in separate .sol files, which are not read). Curved (P2…) keywords and other
+/// keywords are an InputError ("file: line N: …").
 Mesh read_medit(const std::filesystem::path& path);
 
 /// Writes an ASCII Medit .mesh file (MeshVersionFormatted 2): vertices (the reference is
 /// the physical tag of a Point facet on the node, else 0), then facets and cells with
-/// their physical tags as references. Throws InputError for cells of order > 1.
+/// their physical tags as references. Node fields are not written. Throws InputError for
+/// cells of order > 1.
 void write_medit(std::ostream& out, const Mesh& mesh);
 
 }  // namespace meshmorph

@@ -18,18 +18,21 @@ namespace meshmorph {
 /// dimension become Mesh::cells, the others facets. A cell array named `group`,
 /// `material`, `attribute` or `gmsh:physical` gives the physical tags, `entity` or
 /// `gmsh:geometrical` the entity tags; integer FieldData arrays of two values (tag, dim)
-/// name the groups. Node tags are 1..n. Throws InputError ("file: line N: …") for
-/// malformed content.
+/// name the groups. Named scalar PointData arrays (NumberOfComponents absent or 1, any
+/// numeric type and encoding; NaN allowed) become Mesh::node_fields; arrays of several
+/// components, String and Bit arrays are skipped. With several pieces, each must have the
+/// same scalar arrays. Node tags are 1..n. Throws InputError ("file: line N: …") for malformed content.
 Mesh read_vtu(const std::filesystem::path& path);
 
 /// Writes a .vtu file (little-endian, UInt64 headers; `version="2.2"` when Lagrange
 /// hexahedra are present, as VTK does, else "1.0"): Points as Float64 with 3 components,
 /// cells then facets, linear ones as VTK's classic types (1, 3, 5, 9, 10, 12), higher
-/// orders as Lagrange cells (68–72) in VTK's node ordering, cell data Int32 `group` (physical tag) and `entity`, each array of
+/// orders as Lagrange cells (68–72) in VTK's node ordering, Mesh::node_fields as Float64
+/// PointData, cell data Int32 `group` (physical tag) and `entity`, each array of
 /// `cell_data` as Float64 (one value per cell of Mesh::cells; NaN on facets), and named
 /// groups as FieldData arrays {tag, dim}. `binary`: base64-encoded arrays, else ASCII with
-/// shortest exact doubles. Throws std::invalid_argument if a cell_data array has the wrong
-/// length.
+/// shortest exact doubles. Throws std::invalid_argument if a cell_data array or a node
+/// field has the wrong length.
 void write_vtu(std::ostream& out, const Mesh& mesh, bool binary,
                const std::map<std::string, std::vector<double>>& cell_data = {});
 

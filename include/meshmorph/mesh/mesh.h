@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +51,10 @@ struct Mesh {
   std::vector<CellBlock> cells;
   std::vector<CellBlock> facets;
   std::vector<PhysicalGroup> groups;
+  /// Scalar nodal fields (point data) by name: n_nodes() values each, in node order. Read
+  /// from VTU PointData and MSH $NodeData and written back there (docs/formats.md); code
+  /// that renumbers or adds nodes must update or drop them.
+  std::map<std::string, Eigen::VectorXd, std::less<>> node_fields;
 
   std::size_t n_nodes() const { return static_cast<std::size_t>(x.cols()); }
   std::size_t n_cells() const;

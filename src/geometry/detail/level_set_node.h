@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <algorithm>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +24,8 @@ class LevelSetNode {
   virtual double value(const Vec& x) const = 0;
   /// σ(x), and ∇σ(x) in `g` (resized by the callee).
   virtual double value_gradient(const Vec& x, Vec& g) const = 0;
+  /// ∇²σ(x), d×d and symmetric; NaN entries where σ has no second derivative from any side.
+  virtual Eigen::MatrixXd hessian(const Vec& x) const = 0;
   /// Closest point of the zero set. Default: the general iteration (closest_point.cpp).
   virtual std::optional<Vec> closest_point(const Vec& x) const;
   /// The smooth pieces whose zero sets make up this one's (itself, for a leaf).
@@ -36,6 +41,19 @@ struct CompileContext {
   int dim = 0;
 };
 
+/// The step of the numerical derivatives (expression gradients, difference Hessians):
+/// h = 2e-4·max(‖x‖, ℓ).
+inline double difference_step(const Vec& x, double length_scale) { return 2e-4 * std::max(x.norm(), length_scale); }
+
+/// ∇²σ from five-point central differences of `gradient` with step h, symmetrized:
+/// D(:, k) = (−g(x+2h e_k) + 8g(x+h e_k) − 8g(x−h e_k) + g(x−2h e_k)) / 12h, H = (D + Dᵀ)/2.
+Eigen::MatrixXd hessian_by_differences(const std::function<Vec(const Vec&)>& gradient, const Vec& x, double h);
+
+/// A d×d matrix of NaN: the Hessian where σ is not twice differentiable from any side.
+inline Eigen::MatrixXd undefined_hessian(Eigen::Index d) {
+  return Eigen::MatrixXd::Constant(d, d, std::numeric_limits<double>::quiet_NaN());
+}
+
 /// Compiles a tree (level_set_function.cpp dispatches here by kind).
 NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx);
 NodePtr make_sphere(const SphereLevelSet& s);
@@ -47,8 +65,14 @@ NodePtr make_torus(const TorusLevelSet& s);
 NodePtr make_expression(const std::string& expression, double length_scale, const std::string& where);
 enum class CsgOp { Union, Intersection, Difference };
 NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands);
-/// Throws InputError(`where` + ": ...") for a mesh without cells or a size mismatch.
+/// Throws InputError(`where` + ": ...") for a mesh without cells, a size mismatch or a
+/// non-finite value (naming the node).
 NodePtr make_background_field(Mesh mesh, Eigen::VectorXd values, const std::string& where);
+/// A `mesh` level set from a file: reads s.file (io's read_mesh) and takes its nodal field
+/// s.field. Errors (InputError) start with `where` ("source: key_path.mesh"): a malformed
+/// or unreadable file, a mesh of another dimension than `dim`, a missing field (listing the
+/// available ones), a non-finite value.
+NodePtr load_background_field(const MeshLevelSet& s, int dim, const std::string& where);
 
 /// Closest point of {σ_i = 0 for every i} to x0, starting from `start`: Gauss–Newton
 /// projection onto the constraints alternated with a damped tangential correction until

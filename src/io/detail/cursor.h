@@ -85,8 +85,8 @@ class Cursor {
     return v;
   }
 
-  /// A finite double.
-  double real(std::string_view what) {
+  /// A double, possibly "nan" or "inf" (field values; coordinates use real()).
+  double number(std::string_view what) {
     const std::string_view t = token(what);
     double v = 0;
     const char* b = t.data();
@@ -94,7 +94,14 @@ class Cursor {
     const auto [end, ec] = std::from_chars(b, t.data() + t.size(), v);
     if (ec != std::errc() || end != t.data() + t.size())
       fail_at(token_start_, "expected " + std::string(what) + " (a number), got '" + shorten(t) + "'");
-    if (!std::isfinite(v)) fail_at(token_start_, std::string(what) + " is not finite: '" + shorten(t) + "'");
+    return v;
+  }
+
+  /// A finite double.
+  double real(std::string_view what) {
+    const double v = number(what);
+    if (!std::isfinite(v))
+      fail_at(token_start_, std::string(what) + " is not finite: '" + shorten(text_.substr(token_start_, pos_ - token_start_)) + "'");
     return v;
   }
 

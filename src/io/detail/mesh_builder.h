@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -42,6 +44,9 @@ class MeshBuilder {
   std::vector<PhysicalGroup> named_groups; ///< from the file's names, in file order
   /// Where the first node with z ≠ 0 was read (a full error prefix), empty if none.
   std::string first_nonzero_z;
+  /// Scalar nodal fields by name, one value per node of `tags` (the readers check that
+  /// every node has one before finish()).
+  std::map<std::string, std::vector<double>, std::less<>> node_fields;
 
   /// The block of (type, order), created on first use (blocks keep first-use order).
   CellBlock& block(ElementType type, int order);

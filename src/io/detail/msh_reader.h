@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "io/detail/cursor.h"
 #include "io/detail/gmsh_types.h"
@@ -19,6 +22,15 @@ struct MshState {
   bool have_nodes = false;
   /// (entity dim, entity tag) → first physical tag of the entity (MSH 4.1 $Entities).
   std::map<std::pair<int, int>, std::int32_t> entity_physical;
+  /// A scalar $NodeData field: the time step held, a value per node, which nodes have one,
+  /// and where its last section starts (for the "node without a value" error).
+  struct NodeField {
+    std::int64_t step = 0;
+    std::vector<double> values;
+    std::vector<std::uint8_t> given;
+    std::size_t at = 0;
+  };
+  std::map<std::string, NodeField, std::less<>> node_fields;
 
   /// Fails unless `count` items of at least `min_bytes` each fit in the rest of the file.
   void check_count(std::uint64_t count, std::size_t min_bytes, std::size_t at) const {
@@ -47,5 +59,11 @@ void read_msh41_nodes(MshState& s);
 void read_msh41_elements(MshState& s);
 void read_msh22_nodes(MshState& s);
 void read_msh22_elements(MshState& s);
+/// One $NodeData section (2.2 and 4.1; its "$NodeData" token starts at `at`). Scalar fields go to
+/// s.node_fields (a new time step of a name replaces the previous one, sections of the
+/// same step are merged); fields of several components are read and dropped.
+void read_node_data(MshState& s, std::size_t at);
+/// Moves the scalar fields into the builder; fails when a field misses a node.
+void finish_node_data(MshState& s);
 
 }  // namespace meshmorph::detail

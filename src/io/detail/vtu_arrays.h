@@ -31,9 +31,11 @@ struct VtuFile {
 };
 
 /// The values of a DataArray (ascii, base64 binary or appended; zlib or not) converted to T
-/// (double or std::int64_t); exactly `expected` values when given. Non-finite floats and
-/// undecodable data are an InputError at the array's line.
+/// (double or std::int64_t); exactly `expected` values when given. Undecodable data, and
+/// non-finite floats unless `allow_nonfinite` (field values), are an InputError at the
+/// array's line.
 template <class T>
-std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected);
+std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected,
+                          bool allow_nonfinite = false);
 
 }  // namespace meshmorph::detail
