@@ -39,6 +39,8 @@ void add_convert_command(CLI::App& app, Command& run);
 void add_morph_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph untangle CASE.json | MESH [-o OUT] [--report FILE]` (DESIGN §3.1).
 void add_untangle_command(CLI::App& app, Command& run, const int& threads);
+/// `meshmorph fit CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1).
+void add_fit_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
 void add_check_command(CLI::App& app, Command& run);
 

@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: MIT
+// `meshmorph fit CASE.json`: boundary and interface fitting to level sets (paper 003).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/detail/method_output.h"
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/app/commands.h"
+#include "meshmorph/app/option_reader.h"
+#include "meshmorph/app/report.h"
+#include "meshmorph/error.h"
+#include "meshmorph/fem/elevate.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
+#include "meshmorph/methods/fit.h"
+
+namespace meshmorph {
+namespace {
+
+struct FitArgs {
+  std::string case_file;
+  std::string output;
+  std::string report;
+};
+
+struct FitSettings {
+  FitOptions fit;
+  bool split = true;
+  /// σ sampled at the nodes of the (elevated) input mesh and interpolated with its basis, as
+  /// in paper 003 §4.1 (x_B = x), instead of evaluated exactly.
+  bool discrete = false;
+};
+
+FitSettings read_options(const CaseFile& c, int threads) {
+  FitSettings s;
+  FitOptions& o = s.fit;
+  OptionReader r(c.options, c.file.string());
+  r.read("metric", o.metric, {"mu2", "mu303", "mu77", "mu80"});
+  std::string target = "ideal", weights = "adaptive", solver = "auto";
+  r.read("target", target, {"ideal", "input"});
+  o.target = target == "input" ? TargetKind::Input : TargetKind::Ideal;
+  r.read("weight0", o.weight0, 0.0, 1e30);
+  r.read("penalty0", o.penalty0, 1e-12, 1e12);
+  r.read("weights", weights, {"adaptive", "constant"});
+  o.adaptive = weights == "adaptive";
+  r.read("alpha_sigma", o.alpha_sigma, 1.0 + 1e-12, 1e6);
+  r.read("eps_dsigma", o.eps_dsigma, 0.0, 1.0);
+  r.read("eps_sigma", o.eps_sigma, 1e-300, 1e300);
+  r.read("n_sigma", o.n_sigma, 1, 100000);
+  r.read("max_newton", o.max_newton, 1, 100000);
+  r.read("growth", o.growth, 1.0, 1e6);
+  r.read("det_floor", o.det_floor, 0.0, 1.0);
+  r.read("split", s.split);
+  std::string level_set = "analytic";
+  r.read("level_set", level_set, {"analytic", "discrete"});
+  s.discrete = level_set == "discrete";
+  r.read("solver", solver, {"auto", "cholesky", "iterative"});
+  o.solver = solver == "cholesky" ? LinearSolverKind::Cholesky : solver == "iterative" ? LinearSolverKind::Iterative : LinearSolverKind::Auto;
+  r.finish();
+  o.threads = threads;
+  return s;
+}
+
+// The level set must cross the mesh: σ takes both signs over its nodes.
+void check_crossing(const LevelSetFunction& sigma, const Mesh& mesh, const std::string& where) {
+  double lo = 0.0, hi = 0.0;
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i) {
+    const double v = sigma.value(mesh.x.col(i));
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (!(lo < 0.0 && hi > 0.0))
+    throw InputError(where + ": the level set has no zero crossing in the mesh (sigma is " +
+                     (hi <= 0.0 ? "negative" : "positive") + " at every node)");
+}
+
+// A `mesh` level set must cover the mesh: every node inside its background's bounding box
+// (the background interpolates, it does not extrapolate meaningfully).
+void check_coverage(const LevelSet& ls, const Mesh& mesh, const std::string& where) {
+  if (const auto* m = std::get_if<MeshLevelSet>(&ls.shape)) {
+    const Mesh background = read_mesh(m->file);
+    const Eigen::VectorXd lo = background.x.rowwise().minCoeff(), hi = background.x.rowwise().maxCoeff();
+    const double slack = 1e-9 * (hi - lo).norm();
+    for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+      if (((mesh.x.col(i) - lo).array() < -slack).any() || ((mesh.x.col(i) - hi).array() > slack).any())
+        throw InputError(where + ".mesh.file: " + m->file.string() + " does not cover the mesh (node " +
+                         std::to_string(mesh.node_tags.empty() ? i + 1 : mesh.node_tags[static_cast<std::size_t>(i)]) +
+                         " lies outside its bounding box)");
+    return;
+  }
+  std::visit([&](const auto& shape) {
+    if constexpr (requires { shape.operands; })
+      for (const LevelSet& operand : shape.operands) check_coverage(operand, mesh, where);
+  }, ls.shape);
+}
+
+Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const CaseFile c = read_case_file(a.case_file);
+  Mesh mesh = read_mesh(c.mesh);
+  check_case_against_mesh(c, mesh);
+  const FitSettings settings = read_options(c, threads);
+  if ((settings.fit.metric == "mu2" && mesh.dim != 2) || (settings.fit.metric == "mu303" && mesh.dim != 3))
+    throw InputError(a.case_file + ": options.metric: " + settings.fit.metric + " is a " +
+                     (mesh.dim == 2 ? "3D" : "2D") + " metric (mu2 in 2D, mu303 in 3D)");
+  if (c.trim) throw InputError(a.case_file + ": trim: trimming is not available yet (docs/fit.md)");
+  if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
+    throw InputError(c.mesh.string() + ": " + std::to_string(bad) + " inverted elements: fit needs a valid input mesh");
+  if (!c.interface && std::none_of(c.boundary.begin(), c.boundary.end(), [](const BoundaryCondition& b) {
+        return std::holds_alternative<ProjectMotion>(b.motion);
+      }))
+    throw InputError(a.case_file + ": nothing to fit: give \"interface\" or a boundary entry with \"project\"");
+  LevelSetOptions lso;
+  lso.source = a.case_file;
+  lso.length_scale = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
+
+  // Interface: material indicators (eq. 10), corrected (eq. 12), cells split where two of
+  // their facets are still on the interface (linear triangles and quadrilaterals).
+  std::vector<std::uint8_t> eta;
+  std::size_t split_count = 0, two_facet_cells = 0;
+  std::optional<LevelSetFunction> interface;
+  if (c.interface) {
+    check_coverage(*c.interface, mesh, a.case_file + ": interface");
+    interface.emplace(*c.interface, mesh.dim, lso);
+    check_crossing(*interface, mesh, a.case_file + ": interface");
+    Topology topo = build_topology(mesh);
+    std::vector<std::int32_t> to_split;
+    eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split);
+    if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
+      mesh = split_cells(mesh, topo, to_split, eta);
+      split_count = to_split.size();
+    }
+  }
+  if (c.order && *c.order > mesh.order()) mesh = elevate_order(mesh, *c.order);
+  const Topology topology = build_topology(mesh);
+  // "level_set": "discrete": the nodal interpolant on the mesh as it is now.
+  const auto compile = [&](const LevelSetFunction& exact) {
+    if (!settings.discrete) return exact;
+    Eigen::VectorXd values(static_cast<Eigen::Index>(mesh.n_nodes()));
+    for (Eigen::Index i = 0; i < values.size(); ++i) values[i] = exact.value(mesh.x.col(i));
+    return LevelSetFunction(mesh, values);
+  };
+  if (c.interface)
+    for (int n : interface_facet_counts(topology, eta)) two_facet_cells += n >= 2 ? 1 : 0;
+
+  // Fitted nodes and unknowns: every boundary node is fixed unless a `project` entry fits
+  // it or a `slide` entry lets it move on its (axis-aligned) plane.
+  const int d = mesh.dim;
+  std::vector<FitTerm> terms;
+  if (c.interface) terms.push_back({compile(*interface), interface_nodes(mesh, topology, eta)});
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
+  for (const BoundaryCondition& b : c.boundary) {
+    const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(b.group));
+    const std::string where = a.case_file + ": " + b.key_path;
+    if (const auto* project = std::get_if<ProjectMotion>(&b.motion)) {
+      check_coverage(project->target, mesh, where + ".project");
+      FitTerm t{compile(LevelSetFunction(project->target, d, lso)), nodes};
+      check_crossing(t.sigma, mesh, where + ".project");
+      for (std::int32_t node : nodes) std::fill_n(fixed.begin() + d * node, d, 0);
+      terms.push_back(std::move(t));
+    } else if (std::holds_alternative<SlideMotion>(b.motion)) {
+      int axis = -1;
+      for (int k = 0; k < d && axis < 0; ++k) {
+        const Eigen::ArrayXd values = mesh.x.row(k)(nodes).array();
+        if (values.maxCoeff() - values.minCoeff() <= 1e-12 * lso.length_scale) axis = k;
+      }
+      if (axis < 0) throw InputError(where + ".slide: fit slides only on planes x, y or z = const");
+      for (std::int32_t node : nodes)
+        for (int k = 0; k < d; ++k) fixed[static_cast<std::size_t>(d * node + k)] = k == axis;
+    } else if (!std::holds_alternative<FixedMotion>(b.motion)) {
+      throw InputError(where + ": fit takes \"fixed\", \"slide\" and \"project\" entries (move the mesh with morph)");
+    }
+  }
+  for (FitTerm& t : terms) {  // a node stays where a fixed flag holds it: not fitted
+    std::erase_if(t.nodes, [&](std::int32_t node) { return fixed[static_cast<std::size_t>(d * node)] && fixed[static_cast<std::size_t>(d * node + d - 1)]; });
+  }
+
+  Eigen::MatrixXd x = mesh.x;
+  const FitResult r = fit_to_level_sets(mesh, topology, terms, fixed, settings.fit, x);
+
+  Report report;
+  report.method = "fit";
+  report.case_file = a.case_file;
+  report.converged = r.converged;
+  report.message = r.message;
+  report.iterations = IterationCounts{r.weight_updates, 1, r.newton, r.linear};
+  for (const FitIteration& h : r.history)
+    report.history.push_back({{"newton", h.newton}, {"weight", h.weight}, {"alpha", h.alpha}, {"fit_error", h.fit_error},
+                              {"min_det", h.min_det}});
+  Mesh moved = mesh;
+  moved.x = x;
+  BoundaryTargets none;
+  none.role.assign(mesh.n_nodes(), NodeRole::Free);
+  const QualityReport q = detail::fill_result(report, moved, &mesh, none);
+  report.boundary_error_max.reset();
+  report.boundary_error_l2.reset();
+  report.fit_error_max = r.fit_error;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  detail::write_result_mesh(report, moved, q, a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output)));
+  nlohmann::ordered_json extra = nlohmann::ordered_json::object();
+  extra["fit_error_initial"] = r.fit_error0;
+  extra["min_det_initial"] = r.min_det0;
+  extra["min_det_final"] = r.min_det;
+  std::size_t fitted = 0;
+  for (const FitTerm& t : terms) fitted += t.nodes.size();
+  extra["fitted_nodes"] = fitted;
+  extra["split_cells"] = split_count;
+  extra["cells_with_two_interface_facets"] = two_facet_cells;
+  const std::optional<std::filesystem::path> report_path = a.report.empty() ? c.report : std::optional(std::filesystem::path(a.report));
+  if (report_path) write_report(*report_path, report, extra);
+
+  char line[200];
+  out << "fit      " << a.case_file << "\n"
+      << "mesh     " << d << "D, " << mesh.n_nodes() << " nodes, " << mesh.n_cells() << " cells, order " << mesh.order()
+      << "; " << fitted << " fitted nodes" << (split_count ? ", " + std::to_string(split_count) + " cells split" : std::string())
+      << "\n";
+  std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld weight increases, %lld linear solves\n", r.newton,
+                r.weight_updates, r.linear);
+  out << line;
+  std::snprintf(line, sizeof line, "fit      max |sigma| %.3g -> %.3g; min det J %.3g -> %.3g; inverted %zu\n", r.fit_error0,
+                r.fit_error, r.min_det0, r.min_det, q.inverted_elements);
+  out << line;
+  return detail::print_result(out, report, a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output)));
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app, Command& run, const int& threads) {
+  auto args = std::make_shared<FitArgs>();
+  CLI::App* cmd = app.add_subcommand("fit", "Fit the mesh's interface or boundary to a level set (paper 003)");
+  cmd->add_option("CASE", args->case_file, "Case file (JSON, see docs/case-file.md)")->required();
+  cmd->add_option("-o,--output", args->output, "Output mesh (overrides the case's \"output\")")->type_name("OUT");
+  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  cmd->callback([args, &run, &threads] {
+    run = [args, &threads](std::ostream& out) { return run_fit(*args, threads, out); };
+  });
+}
+
+}  // namespace meshmorph

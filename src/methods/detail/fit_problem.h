@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/assembler.h"
+#include "meshmorph/methods/fit.h"
+#include "meshmorph/solve/newton.h"
+
+namespace meshmorph {
+
+/// Paper 003 eq. 8 as a NewtonProblem: F(x) = Σ_E ∫_{E_t} μ(A W⁻¹) + w_σ Σ_terms Σ_{s∈S} σ(x_s)².
+/// The penalty's gradient is 2w σ ∇σ and its Hessian 2w(∇σ∇σᵀ + σ∇²σ) on the d×d block of
+/// each fitted node (eq. 16 with nodal basis functions; its SPD projection in Projected
+/// mode). admissible() applies the line-search rules of §2.2 and §3.4: det A > 0 at every
+/// validity sample, min det A > det_floor · its initial value (eq. 15), |∇F| and max |σ|
+/// grown by less than `growth` (eq. 14); F itself only decreases (Armijo).
+template <int d>
+class FitProblem final : public NewtonProblem {
+ public:
+  FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
+             const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x);
+
+  std::size_t n_free() const { return dofs_.n_free(); }
+  const Eigen::MatrixXd& state() const { return x_; }
+  double weight = 1.0;  ///< w_σ
+
+  /// max |σ(x_s)| over every term's nodes at x.
+  double fit_error(const Eigen::MatrixXd& x) const;
+  double fit_error() const { return fit_error(x_); }
+  /// min det A over the validity samples of every cell at x.
+  double min_det(const Eigen::MatrixXd& x) const;
+  double min_det() const { return min_det(x_); }
+  /// Mean diagonal of the projected metric Hessian at the free DOFs of the fitted nodes.
+  double metric_stiffness();
+  /// Value and gradient norm of F at x (the line search's reference).
+  void remember_current();
+
+  void evaluate(HessianMode mode, Assembly& out) override;
+  double trial_value(const Eigen::VectorXd& p, double alpha) override;
+  bool admissible(const Eigen::VectorXd& p, double alpha) override;
+  void accept(const Eigen::VectorXd& p, double alpha) override;
+
+ private:
+  void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
+  double gradient_norm(const Eigen::MatrixXd& x);  // |∇F| over the free DOFs
+  double penalty_value(const Eigen::MatrixXd& x) const;
+  void bind_blocks(const Eigen::SparseMatrix<double>& H);
+
+  const Mesh* mesh_;
+  const std::vector<FitTerm>* terms_;
+  FitOptions options_;
+  TargetField<d> targets_;
+  DofMap dofs_;
+  std::unique_ptr<EnergyAssembler<d>> assembler_;
+  std::unique_ptr<Metric<d>> metric_;
+  // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
+  // the Hessian's value array, −1 for a fixed DOF.
+  std::vector<std::int64_t> block_offsets_;
+  double min_det0_ = 0.0;
+  double gradient_norm_ = 0.0, error_ = 0.0;  // at the current iterate, for the line search
+  Eigen::MatrixXd x_, trial_;
+};
+
+}  // namespace meshmorph

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: MIT
+// Choosing the fitted nodes of paper 003 §3.2: material indicators (eq. 10), their
+// two-pass correction (eq. 12), conforming splits, and the interface's nodes.
+#include <algorithm>
+#include <stdexcept>
+
+#include <Eigen/LU>
+
+#include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/shape_table.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/methods/fit.h"
+
+namespace meshmorph {
+
+std::vector<std::uint8_t> material_indicators(const Mesh& mesh, const LevelSetFunction& sigma) {
+  std::vector<std::uint8_t> eta;
+  eta.reserve(mesh.n_cells());
+  for (const CellBlock& block : mesh.cells) {
+    const ShapeTable& table = shape_table(block.type, block.order, metric_quadrature_degree(block.type, block.order));
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    const int n = block.n_nodes_per_cell();
+    std::vector<std::uint8_t> local(block.n_cells());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+      Eigen::MatrixXd X(mesh.dim, n);
+      for (int a = 0; a < n; ++a) X.col(a) = mesh.x.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
+      double integral = 0.0;
+      for (int q = 0; q < table.n_points(); ++q)
+        integral += table.weights[q] * std::abs((X * table.grad(q)).determinant()) * sigma.value(X * table.N.col(q));
+      local[static_cast<std::size_t>(c)] = integral >= 0.0 ? 0 : 1;
+    }
+    eta.insert(eta.end(), local.begin(), local.end());
+  }
+  return eta;
+}
+
+std::vector<int> interface_facet_counts(const Topology& topology, const std::vector<std::uint8_t>& eta) {
+  std::vector<int> count(eta.size(), 0);
+  for (std::size_t c = 0; c < eta.size(); ++c)
+    for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k) {
+      const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(k)];
+      if (other >= 0 && eta[static_cast<std::size_t>(other)] != eta[c]) ++count[c];
+    }
+  return count;
+}
+
+std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
+                                             std::vector<std::int32_t>& to_split) {
+  const auto marked = [&](std::size_t c) {
+    int m = 0;
+    for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k) {
+      const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(k)];
+      if (other >= 0 && eta[static_cast<std::size_t>(other)] != eta[c]) ++m;
+    }
+    return m;
+  };
+  for (std::uint8_t pass : {std::uint8_t{0}, std::uint8_t{1}})
+    for (std::size_t c = 0; c < eta.size(); ++c) {
+      if (eta[c] != pass) continue;
+      const auto facets = topology.cell_neighbor_offset[c + 1] - topology.cell_neighbor_offset[c];
+      if (marked(c) == facets - 1 && facets > 2) eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
+    }
+  // Ours, beyond eq. 12 (which cannot help a tetrahedron or hexahedron with two interface
+  // facets of four or six): flip such a cell when that lowers the number of cells with two or
+  // more interface facets among it and its neighbours; sweep until no flip helps.
+  const auto crowded = [&](std::size_t c) {
+    int n = marked(c) >= 2 ? 1 : 0;
+    for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k)
+      if (const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(k)]; other >= 0)
+        n += marked(static_cast<std::size_t>(other)) >= 2 ? 1 : 0;
+    return n;
+  };
+  for (bool flipped = true; flipped;) {
+    flipped = false;
+    for (std::size_t c = 0; c < eta.size(); ++c) {
+      if (marked(c) < 2) continue;
+      const int before = crowded(c);
+      eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
+      if (crowded(c) < before) flipped = true;
+      else eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
+    }
+  }
+  to_split.clear();
+  for (std::size_t c = 0; c < eta.size(); ++c)
+    if (marked(c) >= 2) to_split.push_back(static_cast<std::int32_t>(c));
+  return eta;
+}
+
+Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& cells,
+                 std::vector<std::uint8_t>& eta) {
+  std::vector<std::uint8_t> split(mesh.n_cells(), 0);
+  for (std::int32_t c : cells) split[static_cast<std::size_t>(c)] = 1;
+  Mesh out = mesh;
+  out.cells.clear();
+  CellBlock triangles;
+  triangles.type = ElementType::Triangle;
+  std::vector<std::uint8_t> eta_kept, eta_new;
+  std::int64_t next_tag = mesh.node_tags.empty() ? static_cast<std::int64_t>(mesh.n_nodes())
+                                                 : *std::max_element(mesh.node_tags.begin(), mesh.node_tags.end());
+  std::size_t global = 0;
+  for (const CellBlock& block : mesh.cells) {
+    CellBlock kept = block;
+    kept.nodes.clear();
+    kept.physical.clear();
+    kept.entity.clear();
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++global) {
+      const std::int32_t* v = block.cell(c);
+      const std::int32_t physical = block.physical.empty() ? 0 : block.physical[c];
+      const std::int32_t entity = block.entity.empty() ? 0 : block.entity[c];
+      if (!split[global]) {
+        kept.push_back(v, physical, entity);
+        eta_kept.push_back(eta[global]);
+        continue;
+      }
+      if (block.order != 1 || (block.type != ElementType::Triangle && block.type != ElementType::Quadrilateral))
+        throw std::invalid_argument("split_cells: only linear triangles and quadrilaterals can be split");
+      const int n = block.n_nodes_per_cell();
+      // The interface facets of this cell (local facet f joins corners f and f + 1).
+      std::vector<int> marked;
+      for (int f = 0; f < n; ++f) {
+        const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(topology.cell_neighbor_offset[global]) + f];
+        if (other >= 0 && eta[static_cast<std::size_t>(other)] != eta[global]) marked.push_back(f);
+      }
+      const auto add = [&](std::int32_t a, std::int32_t b, std::int32_t e) {
+        const std::int32_t t[3] = {a, b, e};
+        triangles.push_back(t, physical, entity);
+        eta_new.push_back(eta[global]);
+      };
+      if (n == 4 && marked.size() == 2 && (marked[1] - marked[0] == 1 || marked[1] - marked[0] == 3)) {
+        // Facets (v−1, v) and (v, v+1) meet at corner v: the diagonal from v bisects it.
+        const int vtx = marked[1] - marked[0] == 1 ? marked[1] : marked[0];
+        add(v[vtx], v[(vtx + 1) % 4], v[(vtx + 2) % 4]);
+        add(v[vtx], v[(vtx + 2) % 4], v[(vtx + 3) % 4]);
+        continue;
+      }
+      Eigen::VectorXd centre = Eigen::VectorXd::Zero(mesh.dim);
+      for (int a = 0; a < n; ++a) centre += mesh.x.col(v[a]);
+      centre /= n;
+      const auto p = static_cast<std::int32_t>(out.x.cols());
+      out.x.conservativeResize(Eigen::NoChange, p + 1);
+      out.x.col(p) = centre;
+      if (!out.node_tags.empty()) out.node_tags.push_back(++next_tag);
+      for (int a = 0; a < n; ++a) add(v[a], v[(a + 1) % n], p);
+    }
+    if (kept.n_cells() > 0) out.cells.push_back(std::move(kept));
+  }
+  eta = eta_kept;
+  if (triangles.n_cells() > 0) {
+    // Appended to a linear triangle block when there is one, else as a block of their own.
+    auto same = std::find_if(out.cells.begin(), out.cells.end(),
+                             [](const CellBlock& b) { return b.type == ElementType::Triangle && b.order == 1; });
+    if (same == out.cells.end()) {
+      out.cells.push_back(triangles);
+      eta.insert(eta.end(), eta_new.begin(), eta_new.end());
+    } else {
+      std::size_t before = 0;
+      for (auto it = out.cells.begin(); it != same + 1; ++it) before += it->n_cells();
+      same->nodes.insert(same->nodes.end(), triangles.nodes.begin(), triangles.nodes.end());
+      same->physical.insert(same->physical.end(), triangles.physical.begin(), triangles.physical.end());
+      same->entity.insert(same->entity.end(), triangles.entity.begin(), triangles.entity.end());
+      eta.insert(eta.begin() + static_cast<std::ptrdiff_t>(before), eta_new.begin(), eta_new.end());
+    }
+  }
+  return out;
+}
+
+std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta) {
+  std::vector<std::int32_t> nodes;
+  for (const auto& f : topology.facets) {
+    if (f[1].cell < 0 || eta[static_cast<std::size_t>(f[0].cell)] == eta[static_cast<std::size_t>(f[1].cell)]) continue;
+    const auto [b, c] = topology.locate(f[0].cell);
+    const std::vector<std::int32_t> on = facet_nodes(mesh.cells[b], c, f[0].local);
+    nodes.insert(nodes.end(), on.begin(), on.end());
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+}  // namespace meshmorph

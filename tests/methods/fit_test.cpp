@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/fit.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/fem/elevate.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "methods/detail/fit_problem.h"
+
+namespace meshmorph {
+namespace {
+
+LevelSetFunction circle(double r) {
+  LevelSet ls;
+  ls.shape = SphereLevelSet{Eigen::Vector2d(0.5, 0.5), r};
+  return LevelSetFunction(ls, 2);
+}
+
+std::vector<std::uint8_t> fixed_boundary(const Mesh& mesh, const Topology& topo) {
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(mesh.dim) * mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topo)) std::fill_n(fixed.begin() + mesh.dim * node, mesh.dim, 1);
+  return fixed;
+}
+
+// The interface of a circle in a structured mesh, corrected by eq. 12 and split where needed.
+struct Marked {
+  Mesh mesh;
+  std::vector<std::uint8_t> eta;
+  std::size_t split = 0;
+};
+Marked mark(Mesh mesh, const LevelSetFunction& sigma) {
+  Topology topo = build_topology(mesh);
+  std::vector<std::int32_t> to_split;
+  std::vector<std::uint8_t> eta = correct_indicators(topo, material_indicators(mesh, sigma), to_split);
+  const std::size_t n = to_split.size();
+  if (n > 0) mesh = split_cells(mesh, topo, to_split, eta);
+  return {std::move(mesh), std::move(eta), n};
+}
+
+// Eq. 10 then eq. 12 (and splits): no cell keeps two facets on the interface.
+TEST(FitInterface, CorrectedIndicatorsLeaveOneInterfaceFacetPerCell) {
+  for (ElementType type : {ElementType::Triangle, ElementType::Quadrilateral}) {
+    const Mesh mesh = structured_mesh(type, 1, 10);
+    const LevelSetFunction sigma = circle(0.3);
+    const std::vector<std::uint8_t> raw = material_indicators(mesh, sigma);
+    const std::vector<int> before = interface_facet_counts(build_topology(mesh), raw);
+    const Marked m = mark(mesh, sigma);
+    const Topology topo = build_topology(m.mesh);
+    const std::vector<int> after = interface_facet_counts(topo, m.eta);
+    EXPECT_LE(*std::max_element(after.begin(), after.end()), 1) << name_of(type);
+    EXPECT_EQ(count_invalid_cells(m.mesh), 0u);
+    EXPECT_GT(interface_nodes(m.mesh, topo, m.eta).size(), 8u);
+    if (type == ElementType::Quadrilateral) {  // a staircase: eq. 10 marks two facets of its corner cells
+      EXPECT_GT(*std::max_element(before.begin(), before.end()), 1);
+      EXPECT_GT(m.split, 0u);
+    }
+  }
+}
+
+// The derivatives of F = F_μ + w Σ σ² against differences of F at a state with σ ≠ 0.
+TEST(FitProblem, GradientAndHessianMatchDifferences) {
+  const Mesh mesh = elevate_order(structured_mesh(ElementType::Triangle, 1, 4), 2);
+  const Topology topo = build_topology(mesh);
+  const LevelSetFunction sigma = circle(0.3);
+  std::vector<FitTerm> terms{{sigma, interface_nodes(mesh, topo, material_indicators(mesh, sigma))}};
+  const std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
+  FitOptions o;
+  FitProblem<2> P(mesh, topo, terms, fixed, o, mesh.x);
+  P.weight = 7.0;
+  Assembly a;
+  P.evaluate(HessianMode::Exact, a);
+  const Eigen::Index n = a.gradient.size();
+  ASSERT_GT(n, 0);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<Eigen::Index> pick(0, n - 1);
+  const double h = 1e-6;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Eigen::Index i = pick(rng);
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, i);
+    const double fd = (P.trial_value(e, h) - P.trial_value(e, -h)) / (2 * h);
+    EXPECT_NEAR(a.gradient[i], fd, 1e-6 * std::max(1.0, std::abs(fd))) << i;
+    FitProblem<2> plus(mesh, topo, terms, fixed, o, mesh.x), minus(mesh, topo, terms, fixed, o, mesh.x);
+    plus.weight = minus.weight = P.weight;
+    plus.accept(e, h);
+    minus.accept(e, -h);
+    Assembly ap, am;
+    plus.evaluate(HessianMode::Exact, ap);
+    minus.evaluate(HessianMode::Exact, am);
+    const Eigen::VectorXd column = (ap.gradient - am.gradient) / (2 * h);
+    EXPECT_LE((Eigen::VectorXd(a.hessian.col(i)) - column).norm(), 1e-5 * std::max(1.0, column.norm())) << i;
+  }
+}
+
+// A circle interface in triangle meshes of orders 1–2: fitted to 1e-9, valid.
+TEST(Fit, FitsACircleInterface) {
+  for (int order : {1, 2}) {
+    const LevelSetFunction sigma = circle(0.3);
+    Marked m = mark(structured_mesh(ElementType::Triangle, 1, 10), sigma);
+    const Mesh mesh = order > 1 ? elevate_order(m.mesh, order) : m.mesh;
+    const Topology topo = build_topology(mesh);
+    std::vector<FitTerm> terms{{sigma, interface_nodes(mesh, topo, m.eta)}};
+    FitOptions o;
+    o.eps_sigma = 1e-9;
+    Eigen::MatrixXd x = mesh.x;
+    const FitResult r = fit_to_level_sets(mesh, topo, terms, fixed_boundary(mesh, topo), o, x);
+    ASSERT_TRUE(r.converged) << "order " << order << ": " << r.message;
+    EXPECT_LE(r.fit_error, 1e-9);
+    EXPECT_GT(r.fit_error0, 1e-3);
+    EXPECT_GT(r.min_det, 0.0);
+    Mesh moved = mesh;
+    moved.x = x;
+    EXPECT_EQ(count_invalid_cells(moved), 0u);
+    for (std::int32_t s : terms[0].nodes) EXPECT_LE(std::abs(sigma.value(x.col(s))), 1e-9);
+  }
+}
+
+// Nodes already on the level set (the line x = 0.5 through a column of nodes) and a mesh
+// at its metric's minimum: nothing moves.
+TEST(Fit, AFittedOptimalMeshIsAFixedPoint) {
+  const Mesh mesh = structured_mesh(ElementType::Quadrilateral, 2, 4);
+  const Topology topo = build_topology(mesh);
+  LevelSet plane;
+  plane.shape = PlaneLevelSet{Eigen::Vector2d(0.5, 0.0), Eigen::Vector2d(1.0, 0.0)};
+  const LevelSetFunction sigma(plane, 2);
+  std::vector<std::int32_t> on;
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+    if (std::abs(mesh.x(0, i) - 0.5) < 1e-14) on.push_back(static_cast<std::int32_t>(i));
+  std::vector<FitTerm> terms{{sigma, on}};
+  Eigen::MatrixXd x = mesh.x;
+  const FitResult r = fit_to_level_sets(mesh, topo, terms, fixed_boundary(mesh, topo), FitOptions{}, x);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.newton, 0);
+  EXPECT_LE((x - mesh.x).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+}  // namespace
+}  // namespace meshmorph
