@@ -35,6 +35,9 @@ struct FitSettings {
   /// σ sampled at the nodes of the (elevated) input mesh and interpolated with its basis, as
   /// in paper 003 §4.1 (x_B = x), instead of evaluated exactly.
   bool discrete = false;
+  /// A volume group whose cells are material 1 (the others 0): the interface is taken as
+  /// given, in place of eq. 10–12.
+  std::string materials;
 };
 
 FitSettings read_options(const CaseFile& c, int threads) {
@@ -60,6 +63,7 @@ FitSettings read_options(const CaseFile& c, int threads) {
   std::string level_set = "analytic";
   r.read("level_set", level_set, {"analytic", "discrete"});
   s.discrete = level_set == "discrete";
+  r.read("materials", s.materials);
   r.read("solver", solver, {"auto", "cholesky", "iterative"});
   o.solver = solver == "cholesky" ? LinearSolverKind::Cholesky : solver == "iterative" ? LinearSolverKind::Iterative : LinearSolverKind::Auto;
   r.finish();
@@ -131,7 +135,17 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
     check_crossing(*interface, mesh, a.case_file + ": interface");
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
-    eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split);
+    if (!settings.materials.empty()) {
+      const std::optional<PhysicalGroup> group = mesh.find_group(settings.materials);
+      if (!group || group->dim != mesh.dim)
+        throw InputError(a.case_file + ": options.materials: no volume group \"" + settings.materials + "\" in " +
+                         c.mesh.string());
+      for (const CellBlock& block : mesh.cells)
+        for (std::size_t k = 0; k < block.n_cells(); ++k)
+          eta.push_back(!block.physical.empty() && block.physical[k] == group->tag ? 1 : 0);
+    } else {
+      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split);
+    }
     if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, eta);
       split_count = to_split.size();

@@ -40,6 +40,9 @@ make_case no_crossing '{"sphere": {"center": [10, 10], "radius": 0.1}}'
 expect no_crossing 2 "interface: the level set has no zero crossing in the mesh"
 make_case wrong_metric "$circle" '{"metric": "mu303"}'
 expect wrong_metric 2 "options.metric: mu303 is a 3D metric"
+make_case no_group "$circle" '{"materials": "inner"}'
+expect no_group 2 'options.materials: no volume group "inner"'
+
 # A background field over [0, 1] x [0, 0.5] only: it does not cover the channel [0, 2] x [0, 1].
 awk 'BEGIN {
   print "<?xml version=\"1.0\"?>"
@@ -56,7 +59,7 @@ awk 'BEGIN {
 }' > "$work/small.vtu"
 make_case not_covered '{"mesh": {"file": "small.vtu", "field": "phi"}}'
 expect not_covered 2 "small.vtu does not cover the mesh"
-for name in no_crossing wrong_metric not_covered; do
+for name in no_crossing wrong_metric no_group not_covered; do
   [ ! -e "$work/$name.vtu" ] && [ ! -e "$work/$name.json" ] || fail "$name: something was written for bad input"
 done
 echo "fit CLI checks passed"
