@@ -113,21 +113,40 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   if ((settings.fit.metric == "mu2" && mesh.dim != 2) || (settings.fit.metric == "mu303" && mesh.dim != 3))
     throw InputError(a.case_file + ": options.metric: " + settings.fit.metric + " is a " +
                      (mesh.dim == 2 ? "3D" : "2D") + " metric (mu2 in 2D, mu303 in 3D)");
-  if (c.trim) throw InputError(a.case_file + ": trim: trimming is not available yet (docs/fit.md)");
   if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
     throw InputError(c.mesh.string() + ": " + std::to_string(bad) + " inverted elements: fit needs a valid input mesh");
-  if (!c.interface && std::none_of(c.boundary.begin(), c.boundary.end(), [](const BoundaryCondition& b) {
+  if (!c.interface && !c.trim && std::none_of(c.boundary.begin(), c.boundary.end(), [](const BoundaryCondition& b) {
         return std::holds_alternative<ProjectMotion>(b.motion);
       }))
-    throw InputError(a.case_file + ": nothing to fit: give \"interface\" or a boundary entry with \"project\"");
+    throw InputError(a.case_file + ": nothing to fit: give \"interface\", \"trim\" or a boundary entry with \"project\"");
   LevelSetOptions lso;
   lso.source = a.case_file;
   lso.length_scale = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
 
+  // Trim (§4.2): the cells outside the level set go (eq. 10, corrected like an interface),
+  // and the new boundary is fitted.
+  std::size_t split_count = 0, two_facet_cells = 0;
+  std::optional<LevelSetFunction> trim;
+  std::vector<std::vector<std::uint8_t>> cut;
+  if (c.trim) {
+    check_coverage(*c.trim, mesh, a.case_file + ": trim");
+    trim.emplace(*c.trim, mesh.dim, lso);
+    check_crossing(*trim, mesh, a.case_file + ": trim");
+    Topology topo = build_topology(mesh);
+    std::vector<std::int32_t> to_split;
+    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split);
+    if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
+      mesh = split_cells(mesh, topo, to_split, keep);
+      split_count += to_split.size();
+      topo = build_topology(mesh);
+    }
+    mesh = trim_cells(mesh, topo, keep, cut);
+    if (mesh.n_cells() == 0) throw InputError(a.case_file + ": trim: every cell lies outside the level set");
+  }
+
   // Interface: material indicators (eq. 10), corrected (eq. 12), cells split where two of
   // their facets are still on the interface (linear triangles and quadrilaterals).
   std::vector<std::uint8_t> eta;
-  std::size_t split_count = 0, two_facet_cells = 0;
   std::optional<LevelSetFunction> interface;
   if (c.interface) {
     check_coverage(*c.interface, mesh, a.case_file + ": interface");
@@ -147,8 +166,9 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
       eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split);
     }
     if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
+      if (trim) throw InputError(a.case_file + ": trim with an interface: give the interface's materials, or fit one at a time");
       mesh = split_cells(mesh, topo, to_split, eta);
-      split_count = to_split.size();
+      split_count += to_split.size();
     }
   }
   if (c.order && *c.order > mesh.order()) mesh = elevate_order(mesh, *c.order);
@@ -162,6 +182,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   };
   if (c.interface)
     for (int n : interface_facet_counts(topology, eta)) two_facet_cells += n >= 2 ? 1 : 0;
+  for (const std::vector<std::uint8_t>& flags : cut) two_facet_cells += std::count(flags.begin(), flags.end(), 1) >= 2 ? 1 : 0;
 
   // Fitted nodes and unknowns: every boundary node is fixed unless a `project` entry fits
   // it or a `slide` entry lets it move on its (axis-aligned) plane.
@@ -170,6 +191,11 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   if (c.interface) terms.push_back({compile(*interface), interface_nodes(mesh, topology, eta)});
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
   for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
+  if (trim) {
+    FitTerm t{compile(*trim), cut_nodes(mesh, cut)};
+    for (std::int32_t node : t.nodes) std::fill_n(fixed.begin() + d * node, d, 0);
+    terms.push_back(std::move(t));
+  }
   for (const BoundaryCondition& b : c.boundary) {
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(b.group));
     const std::string where = a.case_file + ": " + b.key_path;

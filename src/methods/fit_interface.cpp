@@ -165,6 +165,79 @@ Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<s
   return out;
 }
 
+Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta,
+                std::vector<std::vector<std::uint8_t>>& cut) {
+  Mesh out;
+  out.dim = mesh.dim;
+  out.groups = mesh.groups;
+  cut.clear();
+  std::vector<std::int32_t> renumber(mesh.n_nodes(), -1);
+  std::int32_t used = 0;
+  std::size_t global = 0;
+  for (const CellBlock& block : mesh.cells) {
+    CellBlock kept = block;
+    kept.nodes.clear();
+    kept.physical.clear();
+    kept.entity.clear();
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++global) {
+      if (!eta[global]) continue;
+      std::vector<std::int32_t> v(block.cell(c), block.cell(c) + block.n_nodes_per_cell());
+      for (std::int32_t& node : v) {
+        if (renumber[static_cast<std::size_t>(node)] < 0) renumber[static_cast<std::size_t>(node)] = used++;
+        node = renumber[static_cast<std::size_t>(node)];
+      }
+      kept.push_back(v.data(), block.physical.empty() ? 0 : block.physical[c], block.entity.empty() ? 0 : block.entity[c]);
+      std::vector<std::uint8_t> flags;
+      for (auto k = topology.cell_neighbor_offset[global]; k < topology.cell_neighbor_offset[global + 1]; ++k) {
+        const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(k)];
+        flags.push_back(other >= 0 && !eta[static_cast<std::size_t>(other)]);
+      }
+      cut.push_back(std::move(flags));
+    }
+    if (kept.n_cells() > 0) out.cells.push_back(std::move(kept));
+  }
+  for (const CellBlock& block : mesh.facets) {
+    CellBlock kept = block;
+    kept.nodes.clear();
+    kept.physical.clear();
+    kept.entity.clear();
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      std::vector<std::int32_t> v(block.cell(c), block.cell(c) + block.n_nodes_per_cell());
+      if (std::any_of(v.begin(), v.end(), [&](std::int32_t node) { return renumber[static_cast<std::size_t>(node)] < 0; }))
+        continue;
+      for (std::int32_t& node : v) node = renumber[static_cast<std::size_t>(node)];
+      kept.push_back(v.data(), block.physical.empty() ? 0 : block.physical[c], block.entity.empty() ? 0 : block.entity[c]);
+    }
+    if (kept.n_cells() > 0) out.facets.push_back(std::move(kept));
+  }
+  out.x.resize(mesh.dim, used);
+  if (!mesh.node_tags.empty()) out.node_tags.resize(static_cast<std::size_t>(used));
+  for (auto& [name, values] : mesh.node_fields) out.node_fields[name].resize(used);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    const std::int32_t j = renumber[i];
+    if (j < 0) continue;
+    out.x.col(j) = mesh.x.col(static_cast<Eigen::Index>(i));
+    if (!mesh.node_tags.empty()) out.node_tags[static_cast<std::size_t>(j)] = mesh.node_tags[i];
+    for (auto& [name, values] : mesh.node_fields) out.node_fields[name][j] = values[static_cast<Eigen::Index>(i)];
+  }
+  return out;
+}
+
+std::vector<std::int32_t> cut_nodes(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut) {
+  std::vector<std::int32_t> nodes;
+  std::size_t global = 0;
+  for (const CellBlock& block : mesh.cells)
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++global)
+      for (std::size_t f = 0; f < cut[global].size(); ++f)
+        if (cut[global][f]) {
+          const std::vector<std::int32_t> on = facet_nodes(block, c, static_cast<int>(f));
+          nodes.insert(nodes.end(), on.begin(), on.end());
+        }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta) {
   std::vector<std::int32_t> nodes;
   for (const auto& f : topology.facets) {

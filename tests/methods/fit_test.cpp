@@ -138,5 +138,34 @@ TEST(Fit, AFittedOptimalMeshIsAFixedPoint) {
   EXPECT_LE((x - mesh.x).cwiseAbs().maxCoeff(), 1e-14);
 }
 
+// Trimming (§4.2): the cells outside a circle go, the nodes on the new boundary are fitted to
+// it; the rest of the boundary (none here) and every kept cell stay valid.
+TEST(Fit, TrimsTheMeshAndFitsTheNewBoundary) {
+  const LevelSetFunction sigma = circle(0.35);
+  Mesh mesh = structured_mesh(ElementType::Triangle, 1, 12);
+  Topology topo = build_topology(mesh);
+  std::vector<std::int32_t> to_split;
+  const std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, sigma), to_split);
+  std::vector<std::vector<std::uint8_t>> cut;
+  const Mesh trimmed = elevate_order(trim_cells(mesh, topo, keep, cut), 2);
+  ASSERT_EQ(cut.size(), trimmed.n_cells());
+  EXPECT_LT(trimmed.n_cells(), mesh.n_cells());
+  for (Eigen::Index i = 0; i < trimmed.x.cols(); ++i) EXPECT_LT(sigma.value(trimmed.x.col(i)), 0.2);  // nothing far outside
+  const Topology t2 = build_topology(trimmed);
+  const std::vector<std::int32_t> on = cut_nodes(trimmed, cut);
+  EXPECT_EQ(on, boundary_nodes(trimmed, t2)) << "the whole new boundary is cut";
+  std::vector<FitTerm> terms{{sigma, on}};
+  std::vector<std::uint8_t> fixed(2 * trimmed.n_nodes(), 0);
+  FitOptions o;
+  o.eps_sigma = 1e-9;
+  Eigen::MatrixXd x = trimmed.x;
+  const FitResult r = fit_to_level_sets(trimmed, t2, terms, fixed, o, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  Mesh moved = trimmed;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  for (std::int32_t s : on) EXPECT_LE(std::abs(sigma.value(x.col(s))), 1e-9);
+}
+
 }  // namespace
 }  // namespace meshmorph

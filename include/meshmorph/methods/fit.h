@@ -45,6 +45,17 @@ std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vect
 Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& cells,
                  std::vector<std::uint8_t>& eta);
 
+/// Trimming (paper 003 §4.2): removes the cells with η = 0 (global cell order) and the nodes
+/// that no kept cell uses; facet elements whose nodes all remain are kept, node tags and
+/// fields follow. `cut` receives, for each kept cell (new global order), one flag per local
+/// facet: its neighbour was removed, so the facet is new boundary to fit.
+Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta,
+                std::vector<std::vector<std::uint8_t>>& cut);
+
+/// The nodes of every order on the facets flagged in `cut` (as trim_cells made it; the cells
+/// may have been elevated since), sorted.
+std::vector<std::int32_t> cut_nodes(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut);
+
 /// The nodes of every order on the facets between cells of different indicators, sorted.
 std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta);
 
