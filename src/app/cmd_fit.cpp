@@ -104,6 +104,15 @@ void check_coverage(const LevelSet& ls, const Mesh& mesh, const std::string& whe
   }, ls.shape);
 }
 
+// A level set of the case, compiled after the checks above.
+LevelSetFunction checked_level_set(const LevelSet& ls, const Mesh& mesh, const LevelSetOptions& options,
+                                   const std::string& where) {
+  check_coverage(ls, mesh, where);
+  LevelSetFunction sigma(ls, mesh.dim, options);
+  check_crossing(sigma, mesh, where);
+  return sigma;
+}
+
 Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.case_file);
@@ -129,9 +138,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   std::optional<LevelSetFunction> trim;
   std::vector<std::vector<std::uint8_t>> cut;
   if (c.trim) {
-    check_coverage(*c.trim, mesh, a.case_file + ": trim");
-    trim.emplace(*c.trim, mesh.dim, lso);
-    check_crossing(*trim, mesh, a.case_file + ": trim");
+    trim.emplace(checked_level_set(*c.trim, mesh, lso, a.case_file + ": trim"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
     std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split);
@@ -149,9 +156,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   std::vector<std::uint8_t> eta;
   std::optional<LevelSetFunction> interface;
   if (c.interface) {
-    check_coverage(*c.interface, mesh, a.case_file + ": interface");
-    interface.emplace(*c.interface, mesh.dim, lso);
-    check_crossing(*interface, mesh, a.case_file + ": interface");
+    interface.emplace(checked_level_set(*c.interface, mesh, lso, a.case_file + ": interface"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
     if (!settings.materials.empty()) {
@@ -200,9 +205,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(b.group));
     const std::string where = a.case_file + ": " + b.key_path;
     if (const auto* project = std::get_if<ProjectMotion>(&b.motion)) {
-      check_coverage(project->target, mesh, where + ".project");
-      FitTerm t{compile(LevelSetFunction(project->target, d, lso)), nodes};
-      check_crossing(t.sigma, mesh, where + ".project");
+      FitTerm t{compile(checked_level_set(project->target, mesh, lso, where + ".project")), nodes};
       for (std::int32_t node : nodes) std::fill_n(fixed.begin() + d * node, d, 0);
       terms.push_back(std::move(t));
     } else if (std::holds_alternative<SlideMotion>(b.motion)) {

@@ -72,7 +72,7 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
     no.max_iterations = options.max_newton - steps;
     // The penalized problem at this w_σ solved to rounding: with a fixed weight that is the
     // answer, with an adaptive one the weight rises below.
-    no.decrement_tolerance = 1e-14 * std::max(P.trial_value(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(P.n_free())), 0.0), 1e-300);
+    no.decrement_tolerance = 1e-14 * std::max(P.energy(), 1e-300);
     const NewtonStats s = newton(P, *solver, no, &memory);
     result.linear += s.linear_solves;
     if (s.stopped || done) break;

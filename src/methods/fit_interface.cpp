@@ -12,6 +12,17 @@
 #include "meshmorph/methods/fit.h"
 
 namespace meshmorph {
+namespace {
+
+// A block of the same type and order without cells.
+CellBlock empty_like(const CellBlock& block) {
+  CellBlock b;
+  b.type = block.type;
+  b.order = block.order;
+  return b;
+}
+
+}  // namespace
 
 std::vector<std::uint8_t> material_indicators(const Mesh& mesh, const LevelSetFunction& sigma) {
   std::vector<std::uint8_t> eta;
@@ -100,10 +111,7 @@ Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<s
                                                  : *std::max_element(mesh.node_tags.begin(), mesh.node_tags.end());
   std::size_t global = 0;
   for (const CellBlock& block : mesh.cells) {
-    CellBlock kept = block;
-    kept.nodes.clear();
-    kept.physical.clear();
-    kept.entity.clear();
+    CellBlock kept = empty_like(block);
     for (std::size_t c = 0; c < block.n_cells(); ++c, ++global) {
       const std::int32_t* v = block.cell(c);
       const std::int32_t physical = block.physical.empty() ? 0 : block.physical[c];
@@ -175,10 +183,7 @@ Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<st
   std::int32_t used = 0;
   std::size_t global = 0;
   for (const CellBlock& block : mesh.cells) {
-    CellBlock kept = block;
-    kept.nodes.clear();
-    kept.physical.clear();
-    kept.entity.clear();
+    CellBlock kept = empty_like(block);
     for (std::size_t c = 0; c < block.n_cells(); ++c, ++global) {
       if (!eta[global]) continue;
       std::vector<std::int32_t> v(block.cell(c), block.cell(c) + block.n_nodes_per_cell());
@@ -197,10 +202,7 @@ Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<st
     if (kept.n_cells() > 0) out.cells.push_back(std::move(kept));
   }
   for (const CellBlock& block : mesh.facets) {
-    CellBlock kept = block;
-    kept.nodes.clear();
-    kept.physical.clear();
-    kept.entity.clear();
+    CellBlock kept = empty_like(block);
     for (std::size_t c = 0; c < block.n_cells(); ++c) {
       std::vector<std::int32_t> v(block.cell(c), block.cell(c) + block.n_nodes_per_cell());
       if (std::any_of(v.begin(), v.end(), [&](std::int32_t node) { return renumber[static_cast<std::size_t>(node)] < 0; }))

@@ -35,6 +35,8 @@ class FitProblem final : public NewtonProblem {
   double min_det() const { return min_det(x_); }
   /// Mean diagonal of the projected metric Hessian at the free DOFs of the fitted nodes.
   double metric_stiffness();
+  /// F at the current iterate.
+  double energy() const { return assembler_->value(*metric_, x_, {}, options_.threads) + penalty_value(x_); }
   /// Value and gradient norm of F at x (the line search's reference).
   void remember_current();
 
