@@ -50,6 +50,10 @@ class MeshChecker {
           } else if constexpr (std::is_same_v<S, UnionLevelSet> || std::is_same_v<S, IntersectionLevelSet> ||
                                std::is_same_v<S, DifferenceLevelSet>) {
             for (const auto& operand : s.operands) level_set(operand);
+          } else if constexpr (std::is_same_v<S, DistanceLevelSet>) {
+            vector(s.lower, base.key("distance").key("lower"));
+            vector(s.upper, base.key("distance").key("upper"));
+            for (const auto& operand : s.operands) level_set(operand);
           }
         },
         ls.shape);

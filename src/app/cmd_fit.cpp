@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/detail/method_output.h"
+#include "app/detail/solver_option.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
 #include "meshmorph/app/option_reader.h"
@@ -45,7 +46,7 @@ FitSettings read_options(const CaseFile& c, int threads) {
   FitOptions& o = s.fit;
   OptionReader r(c.options, c.file.string());
   r.read("metric", o.metric, {"mu2", "mu303", "mu77", "mu80"});
-  std::string target = "ideal", weights = "adaptive", solver = "auto";
+  std::string target = "ideal", weights = "adaptive";
   r.read("target", target, {"ideal", "input"});
   o.target = target == "input" ? TargetKind::Input : TargetKind::Ideal;
   r.read("weight0", o.weight0, 0.0, 1e30);
@@ -64,8 +65,7 @@ FitSettings read_options(const CaseFile& c, int threads) {
   r.read("level_set", level_set, {"analytic", "discrete"});
   s.discrete = level_set == "discrete";
   r.read("materials", s.materials);
-  r.read("solver", solver, {"auto", "cholesky", "iterative"});
-  o.solver = solver == "cholesky" ? LinearSolverKind::Cholesky : solver == "iterative" ? LinearSolverKind::Iterative : LinearSolverKind::Auto;
+  o.solver = detail::read_solver(r);
   r.finish();
   o.threads = threads;
   return s;
@@ -84,8 +84,8 @@ void check_crossing(const LevelSetFunction& sigma, const Mesh& mesh, const std::
                      (hi <= 0.0 ? "negative" : "positive") + " at every node)");
 }
 
-// A `mesh` level set must cover the mesh: every node inside its background's bounding box
-// (the background interpolates, it does not extrapolate meaningfully).
+// A `mesh` or `distance` level set must cover the mesh: every node inside its background's
+// bounding box (the background interpolates, it does not extrapolate meaningfully).
 void check_coverage(const LevelSet& ls, const Mesh& mesh, const std::string& where) {
   if (const auto* m = std::get_if<MeshLevelSet>(&ls.shape)) {
     const Mesh background = read_mesh(m->file);
@@ -96,6 +96,15 @@ void check_coverage(const LevelSet& ls, const Mesh& mesh, const std::string& whe
         throw InputError(where + ".mesh.file: " + m->file.string() + " does not cover the mesh (node " +
                          std::to_string(mesh.node_tags.empty() ? i + 1 : mesh.node_tags[static_cast<std::size_t>(i)]) +
                          " lies outside its bounding box)");
+    return;
+  }
+  if (const auto* d = std::get_if<DistanceLevelSet>(&ls.shape)) {
+    const double slack = 1e-9 * (d->upper - d->lower).norm();
+    for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+      if (((mesh.x.col(i) - d->lower).array() < -slack).any() || ((mesh.x.col(i) - d->upper).array() > slack).any())
+        throw InputError(where + ".distance: the box [lower, upper] does not cover the mesh (node " +
+                         std::to_string(mesh.node_tags.empty() ? i + 1 : mesh.node_tags[static_cast<std::size_t>(i)]) +
+                         " lies outside it)");
     return;
   }
   std::visit([&](const auto& shape) {

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/detail/method_output.h"
+#include "app/detail/solver_option.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
@@ -43,11 +44,8 @@ RunSettings read_options(const CaseFile& c, int threads) {
   RunSettings s;
   OptionReader r(c.options, c.file.string());
   r.read("method", s.method, {"morph", "laplace", "elastic"});
-  std::string solver = "auto", weights = "adaptive";
-  r.read("solver", solver, {"auto", "cholesky", "iterative"});
-  const LinearSolverKind kind = solver == "cholesky"    ? LinearSolverKind::Cholesky
-                                : solver == "iterative" ? LinearSolverKind::Iterative
-                                                        : LinearSolverKind::Auto;
+  std::string weights = "adaptive";
+  const LinearSolverKind kind = detail::read_solver(r);
   MorphOptions& m = s.morph;
   r.read("tolerance", m.tolerance, 1e-16, 1.0);
   r.read("gradient_tolerance", m.gradient_tolerance, 1e-20, 1.0);

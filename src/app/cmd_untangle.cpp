@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/detail/method_output.h"
+#include "app/detail/solver_option.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
@@ -49,13 +50,12 @@ UntangleOptions read_options(const nlohmann::json& options, const std::string& f
     r.read("reference", ref, {"input", "regular"});
     reference = ref == "input" ? UntangleReference::Input : UntangleReference::Regular;
   }
-  std::string rule = "continuation", solver = "auto";
+  std::string rule = "continuation";
   r.read("delta_rule", rule, {"continuation", "paper"});
   o.delta_rule = rule == "paper" ? DeltaRule::Paper : DeltaRule::Continuation;
   r.read("predictor", o.predictor);
   r.read("max_newton", o.max_newton, 1, 100000);
-  r.read("solver", solver, {"auto", "cholesky", "iterative"});
-  o.solver = solver == "cholesky" ? LinearSolverKind::Cholesky : solver == "iterative" ? LinearSolverKind::Iterative : LinearSolverKind::Auto;
+  o.solver = detail::read_solver(r);
   r.finish();
   o.threads = threads;
   return o;

@@ -15,7 +15,7 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kKinds =
-    "sphere, cylinder, plane, box, torus, expr, union, intersection, difference, mesh";
+    "sphere, cylinder, plane, box, torus, expr, union, intersection, difference, mesh, distance";
 
 std::vector<LevelSet> parse_operands(const json& j, const JsonWhere& w, const std::filesystem::path& base,
                                      std::size_t min_count, std::size_t max_count) {
@@ -119,6 +119,26 @@ LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesyste
     m.file = existing_file(read_string(r.required("file"), r.at("file")), base, r.at("file"));
     m.field = read_string(r.required("field"), r.at("field"));
     ls.shape = std::move(m);
+    r.finish();
+  } else if (kind == "distance") {
+    ObjectReader r(v, at);
+    DistanceLevelSet d;
+    d.operands.push_back(parse_level_set(r.required("of"), r.at("of"), base));
+    d.lower = read_vector(r.required("lower"), r.at("lower"));
+    d.upper = read_vector(r.required("upper"), r.at("upper"));
+    if (d.upper.size() != d.lower.size()) r.at("upper").fail("expected as many entries as \"lower\"");
+    if (!((d.upper - d.lower).minCoeff() > 0)) r.at("upper").fail("expected every entry above \"lower\"'s");
+    const auto integer = [&](const char* key, int& value, int lo, int hi) {
+      if (const json* given = r.optional(key)) {
+        const long long n = read_integer(*given, r.at(key));
+        if (n < lo || n > hi) r.at(key).fail("expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi));
+        value = static_cast<int>(n);
+      }
+    };
+    integer("cells", d.cells, 1, 1024);
+    integer("levels", d.levels, 0, 12);
+    integer("order", d.order, 1, 3);
+    ls.shape = std::move(d);
     r.finish();
   } else {
     at.fail(std::string("unknown level-set kind (expected one of: ") + kKinds + ")");

@@ -2,12 +2,14 @@
 #include "meshmorph/geometry/level_set_function.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 
 #include "geometry/detail/level_set_node.h"
 #include "meshmorph/error.h"
+#include "meshmorph/geometry/distance_field.h"
 
 namespace meshmorph {
 
@@ -111,10 +113,27 @@ NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx) {
         } else if constexpr (std::is_same_v<S, DifferenceLevelSet>) {
           const Checker c(ctx, ls.key_path, "difference");
           return make_csg(CsgOp::Difference, compile_operands(s.operands, ctx, c, 2, 2));
-        } else {
-          static_assert(std::is_same_v<S, MeshLevelSet>);
+        } else if constexpr (std::is_same_v<S, MeshLevelSet>) {
           const Checker c(ctx, ls.key_path, "mesh");
           return load_background_field(s, ctx.dim, c.where());
+        } else {
+          static_assert(std::is_same_v<S, DistanceLevelSet>);
+          const Checker c(ctx, ls.key_path, "distance");
+          const NodePtr indicator = compile_operands(s.operands, ctx, c, 1, 1).front();
+          c.vector(s.lower, "lower");
+          c.vector(s.upper, "upper");
+          DistanceFieldOptions o;
+          o.lower = s.lower;
+          o.upper = s.upper;
+          o.cells = s.cells;
+          o.levels = s.levels;
+          o.order = s.order;
+          try {
+            DistanceField f = distance_field([&](const Vec& x) { return indicator->value(x) < 0; }, ctx.dim, o);
+            return make_background_field(std::move(f.background), std::move(f.values), c.where());
+          } catch (const std::invalid_argument& e) {
+            c.fail("", std::string(e.what()).substr(std::string("distance_field: ").size()));
+          }
         }
       },
       ls.shape);

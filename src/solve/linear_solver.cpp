@@ -3,6 +3,7 @@
 
 #include "solve/detail/cg_amg_solver.h"
 #include "solve/detail/cholmod_solver.h"
+#include "solve/detail/minres_jacobi_solver.h"
 
 namespace meshmorph {
 
@@ -28,6 +29,7 @@ LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, std::size_t n) {
   switch (resolve_linear_solver(options.kind, options.dim, n)) {
     case LinearSolverKind::Iterative: return std::make_unique<detail::CgAmgSolver>(options);
+    case LinearSolverKind::MinresJacobi: return std::make_unique<detail::MinresJacobiSolver>(options);
     default: return std::make_unique<detail::CholmodSolver>();
   }
 }

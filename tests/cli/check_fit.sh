@@ -2,9 +2,10 @@
 # SPDX-License-Identifier: MIT
 # check_fit.sh MESHMORPH EXAMPLES WORK: `fit` end to end on the quad channel of example 04 —
 # the fitted run writes a valid mesh and a report with fit_error_max below eps_sigma; a
-# level set with no zero crossing in the mesh, a background field that does not cover it and a
-# metric of the other dimension exit 2 and write nothing; a run out of Newton steps exits 1
-# and writes no mesh.
+# level set with no zero crossing in the mesh, a background field or distance box that does not
+# cover it, an unknown key of a distance level set and a metric of the other dimension exit 2
+# and write nothing; the circle through a distance field fits as well; a run out of Newton
+# steps exits 1 and writes no mesh.
 set -u
 mm=$1 examples=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -31,6 +32,12 @@ expect ok 0
 awk -v e="$(field "$work/ok.json" fit_error_max)" 'BEGIN { exit !(e <= 1e-8) }' || fail "ok: fit_error_max"
 [ "$(field "$work/ok.json" cells_with_two_interface_facets)" = 0 ] || fail "ok: a cell has two interface facets"
 "$mm" --quiet quality "$work/ok.vtu" > /dev/null || fail "ok: output invalid or unreadable"
+
+# The same circle through a distance field on a refined background mesh (paper 003 §3.1).
+make_case distance '{"distance": {"of": '"$circle"', "lower": [0, 0], "upper": [2, 1], "levels": 3}}' '{"eps_sigma": 1e-8}'
+expect distance 0
+[ "$(field "$work/distance.json" valid)" = true ] || fail "distance: report not valid"
+awk -v e="$(field "$work/distance.json" fit_error_max)" 'BEGIN { exit !(e <= 1e-8) }' || fail "distance: fit_error_max"
 
 make_case budget "$circle" '{"max_newton": 1}'
 expect budget 1 "above eps_sigma"
@@ -59,7 +66,11 @@ awk 'BEGIN {
 }' > "$work/small.vtu"
 make_case not_covered '{"mesh": {"file": "small.vtu", "field": "phi"}}'
 expect not_covered 2 "small.vtu does not cover the mesh"
-for name in no_crossing wrong_metric no_group not_covered; do
+make_case distance_small '{"distance": {"of": '"$circle"', "lower": [0, 0], "upper": [1, 1]}}'
+expect distance_small 2 "interface.distance: the box \[lower, upper\] does not cover the mesh"
+make_case distance_key '{"distance": {"of": '"$circle"', "lower": [0, 0], "upper": [2, 1], "level": 3}}'
+expect distance_key 2 'interface.distance.level: unknown key'
+for name in no_crossing wrong_metric no_group not_covered distance_small distance_key; do
   [ ! -e "$work/$name.vtu" ] && [ ! -e "$work/$name.json" ] || fail "$name: something was written for bad input"
 done
 echo "fit CLI checks passed"

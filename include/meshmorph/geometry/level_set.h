@@ -35,11 +35,20 @@ struct IntersectionLevelSet { std::vector<LevelSet> operands; };
 struct DifferenceLevelSet { std::vector<LevelSet> operands; };
 /// A nodal field `field` of a background mesh `file` (paper 003 §3.1); path resolved.
 struct MeshLevelSet { std::filesystem::path file; std::string field; };
+/// The signed distance to the boundary of {σ < 0} of operands[0] (only its sign is used),
+/// sampled on a background mesh of the box [lower, upper] refined `levels` times around it
+/// (paper 003 §3.1; geometry/distance_field.h).
+struct DistanceLevelSet {
+  std::vector<LevelSet> operands;  ///< exactly one: the indicator's level set ("of")
+  CaseVector lower, upper;
+  int cells = 8, levels = 4, order = 2;
+};
 
 /// A level set of DESIGN §3.2 (σ < 0 inside the solid) as a typed tree.
 struct LevelSet {
   std::variant<SphereLevelSet, CylinderLevelSet, PlaneLevelSet, BoxLevelSet, TorusLevelSet,
-               ExprLevelSet, UnionLevelSet, IntersectionLevelSet, DifferenceLevelSet, MeshLevelSet>
+               ExprLevelSet, UnionLevelSet, IntersectionLevelSet, DifferenceLevelSet, MeshLevelSet,
+               DistanceLevelSet>
       shape;
   std::string key_path;  ///< where it was given, e.g. "boundary[3].project"
 };

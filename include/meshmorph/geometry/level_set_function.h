@@ -39,6 +39,9 @@ struct LevelSetOptions {
 /// - mesh: a nodal field on a background mesh, interpolated with the cell's Lagrange basis;
 ///   from a file, the mesh is read with read_mesh (io/mesh_io.h) and the field is one of its
 ///   Mesh::node_fields (VTU PointData, MSH $NodeData).
+/// - distance: the signed distance to the zero set of its operand's sign, sampled on a
+///   background mesh refined around it (geometry/distance_field.h) and interpolated as a
+///   mesh field; built here, once.
 ///
 /// Immutable once built; copies share the compiled tree. Every member function may be
 /// called from several threads at once (expressions keep a locked pool of parsers, one

@@ -14,6 +14,9 @@ enum class LinearSolverKind {
   Auto,       ///< Cholesky below a size threshold (and in 2D), Iterative above it in 3D
   Cholesky,   ///< CHOLMOD supernodal LLᵀ; symbolic analysis reused while the pattern is unchanged
   Iterative,  ///< conjugate gradients preconditioned by smoothed-aggregation algebraic multigrid
+  /// MINRES preconditioned by the diagonal (paper 003's solver): a baseline to compare
+  /// against, never chosen by Auto
+  MinresJacobi,
 };
 
 struct LinearSolverOptions {
@@ -69,7 +72,7 @@ class LinearSolver {
   /// Whether solve_previous() costs little next to factorize() (a few preconditioned
   /// iterations with a direct factor, not a multigrid-preconditioned Krylov solve).
   virtual bool cheap_previous() const { return false; }
-  /// "cholmod" or "cg-amg".
+  /// "cholmod", "cg-amg" or "minres-jacobi".
   virtual std::string name() const = 0;
 };
 
