@@ -50,6 +50,9 @@ DeformOptions read_options(const CaseFile& c, int threads) {
   r.read("beta", o.beta, 0.0, 1e12);
   r.read("diffusion", diffusion, {"design", "far_field"});
   o.diffusion = diffusion == "far_field" ? DiffusionDistance::FarField : DiffusionDistance::Design;
+  std::string convection = "advective";
+  r.read("convection", convection, {"conservative", "advective"});
+  o.conservative = convection == "conservative";
   r.read("eikonal_h", o.eikonal.h_factor, 1e-6, 1e6);
   r.read("max_newton", o.eikonal.max_newton, 1, 10000);
   r.read("solver", solver, {"auto", "cholesky", "iterative"});

@@ -7,7 +7,8 @@
 namespace meshmorph::detail {
 
 Eigen::SparseMatrix<double> convection_diffusion_matrix(const ScalarAssembler& assembler, const Eigen::VectorXd& diffusion_distance,
-                                                        const Eigen::VectorXd& wind_potential, double alpha, double beta) {
+                                                        const Eigen::VectorXd& wind_potential, double alpha, double beta,
+                                                        bool conservative) {
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd unused;
   assembler.assemble(
@@ -35,7 +36,8 @@ Eigen::SparseMatrix<double> convection_diffusion_matrix(const ScalarAssembler& a
           }
           // ∫ k ∇v·∇w − v b·∇w (div(b v) integrated by parts; w vanishes on the Dirichlet
           // boundary) + Σ τ (b·∇w)(b·∇v).
-          Ke += cell.w[q] * (k * G * G.transpose() - Gb * N.transpose() + tau * Gb * Gb.transpose());
+          if (conservative) Ke += cell.w[q] * (k * G * G.transpose() - Gb * N.transpose() + tau * Gb * Gb.transpose());
+          else Ke += cell.w[q] * (k * G * G.transpose() + N * Gb.transpose() + tau * Gb * Gb.transpose());
         }
       },
       A, unused);

@@ -95,7 +95,8 @@ DeformResult deform(const Mesh& mesh, const Topology& topology, const BoundaryTa
     if (bc.role[i] == NodeRole::Prescribed || bc.role[i] == NodeRole::Fixed) dirichlet[i] = 1;
   const detail::ScalarAssembler assembler(mesh, topology, options.threads, "deform");
   const Eigen::SparseMatrix<double> A = detail::convection_diffusion_matrix(
-      assembler, options.diffusion == DiffusionDistance::FarField ? eps1 : eps2, eps2, options.alpha, options.beta);
+      assembler, options.diffusion == DiffusionDistance::FarField ? eps1 : eps2, eps2, options.alpha, options.beta,
+      options.conservative);
   detail::DirichletSolver solver(dirichlet);
   if (!solver.factorize(A)) {
     result.x = mesh.x;

@@ -31,11 +31,17 @@ struct DeformOptions {
   bool cvt = true;            ///< the tangential CVT repair of the design surface (eq. 3.5)
   CvtOptions cvt_options;
   EikonalOptions eikonal;     ///< both Eikonal solves (eq. 3.7)
-  /// α of eq. 3.8 (diffusion α ε², ε normalized to max 1); the paper leaves α, β "to be chosen
-  /// based on the actual geometry": these defaults keep the 2D and 3D obstacle benchmarks valid.
+  /// α of eq. 3.8 (diffusion α ε̂², ε̂ = ε / max ε). The paper leaves α and β "to be chosen
+  /// based on the actual geometry"; only β/α matters (the equation is homogeneous), and it
+  /// sets where diffusion takes over from convection: at ε̂ ≈ β/α. 1 and 1 keep the 2D and 3D
+  /// obstacle benchmarks valid (docs/deform.md).
   double alpha = 1.0;
-  double beta = 1.0;          ///< β of eq. 3.8: the convection speed along ∇ε₂ (normalized)
+  double beta = 1.0;          ///< β of eq. 3.8: the convection speed along ∇ε̂₂
   DiffusionDistance diffusion = DiffusionDistance::Design;
+  /// true: the convection as printed, div(β v ∇ε₂) (eq. 3.8); false (default): β ∇ε₂·∇v, which
+  /// carries v along the rays without the thinning by their spread (v Δε₂) that compresses
+  /// the cells in front of a convex bump (docs/deform.md has the measurements).
+  bool conservative = false;
   LinearSolverKind solver = LinearSolverKind::Auto;  ///< the Laplace baseline's linear solver
   int threads = 0;            ///< OpenMP threads; 0 = the OpenMP default
 };

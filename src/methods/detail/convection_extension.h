@@ -12,7 +12,10 @@ namespace meshmorph::detail {
 /// convective term is integrated by parts (exact for P1, whose ∇ε is discontinuous across
 /// cells), and the SUPG residual keeps its convective part b·∇v only: exact for P1, where
 /// Δv and div b vanish in every cell, and an O(h^p) inconsistency for order p ≥ 2.
+/// `conservative` = false replaces div(v b) by b·∇v (Galerkin N_a (b·∇N_b)): the
+/// displacement is carried unchanged along the rays instead of thinning out with their spread.
 Eigen::SparseMatrix<double> convection_diffusion_matrix(const ScalarAssembler& assembler, const Eigen::VectorXd& diffusion_distance,
-                                                        const Eigen::VectorXd& wind_potential, double alpha, double beta);
+                                                        const Eigen::VectorXd& wind_potential, double alpha, double beta,
+                                                        bool conservative);
 
 }  // namespace meshmorph::detail
