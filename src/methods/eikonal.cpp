@@ -102,7 +102,7 @@ EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const
       return result;
     }
     if (h <= result.h) break;
-    h = std::max(0.25 * h, result.h);
+    h = std::max(0.01 * h, result.h);
   }
   result.message = "converged";
   return result;

@@ -18,9 +18,9 @@ namespace {
 // Below this many cells a block is assembled by one thread (see stiffness.cpp).
 constexpr std::int64_t k_min_parallel_cells = 512;
 
-// Exact for the products of two basis gradients and a basis function on affine cells of
-// order p (degree 3p − 2 on simplices), with a margin for curved cells and tensor cells.
-int scalar_degree(ElementType type, int order) { return is_simplex(type) ? std::max(2, 3 * order - 1) : 3 * order; }
+// Exact for the products of two basis gradients and a basis function on affine simplices
+// of order p (degree 3p − 2: one point for P1); tensor cells get degree 3p per variable.
+int scalar_degree(ElementType type, int order) { return is_simplex(type) ? std::max(1, 3 * order - 2) : 3 * order; }
 
 }  // namespace
 

@@ -24,7 +24,7 @@ struct EikonalResult {
   Eigen::VectorXd distance;  ///< ε per node (0 on the zero set; nodes in no cell: 0)
   double h = 0.0;            ///< the stabilization used
   int newton = 0;            ///< Newton steps over all stages
-  int stages = 0;            ///< continuation stages (h divided by 4 from the mesh diameter)
+  int stages = 0;            ///< continuation stages (h divided by 100 from the mesh diameter)
   bool converged = false;
   std::string message;
 };
@@ -37,7 +37,7 @@ struct EikonalResult {
 /// The sign of the h term is the vanishing-viscosity one: with it ε ≥ 0 is the travel time
 /// from the zero set and converges to the distance as h → 0 (eq. 3.7 as printed, +hΔε,
 /// has −distance as its viscosity limit; docs/deform.md). Newton starts from the Poisson
-/// solution at h = mesh diameter, and h is divided by 4 stage by stage to its target, each
+/// solution at h = mesh diameter, and h is divided by 100 stage by stage to its target, each
 /// stage converged by Newton with a backtracking line search on the residual norm (loosely,
 /// to 1e-4 of the diameter, before the last).
 ///
