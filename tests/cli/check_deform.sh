@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # check_deform.sh MESHMORPH EXAMPLES WORK: `deform` end to end — the obstacle of example 06
 # under a large normal bump ends valid, with its mesh and report, and the CVT step lowers the
-# design's spacing ratio below the unrepaired update's; the Laplacian baseline runs; bad input
+# design's spacing ratio below the unrepaired update's; projected onto a larger circle, the
+# nodes end on it; the Laplacian baseline runs and writes no invalid mesh; bad input
 # (a design group that does not exist, a displacement row for a node off the design, an
 # unknown option, no moving group) exits 2 and writes nothing.
 set -u
@@ -36,6 +37,13 @@ awk -v a="$(field "$work/bump.json" spacing_ratio)" -v b="$(field "$work/bump.js
 awk -v e="$(field "$work/bump.json" boundary_error_max)" 'BEGIN { exit !(e < 1e-9) }' ||
   fail "bump: design nodes off the moved surface"
 "$mm" --quiet quality "$work/bump.vtu" > /dev/null || fail "bump: output invalid or unreadable"
+
+# project: the obstacle grows onto the circle of radius 0.6; with the exact projection the
+# repaired nodes stay on it to rounding.
+make_case project '[{"group": "obstacle", "project": {"sphere": {"center": [0, 0], "radius": 0.6}}}, {"group": "farfield", "fixed": true}]'
+expect project 0
+awk -v e="$(field "$work/project.json" boundary_error_max)" 'BEGIN { exit !(e < 1e-10) }' ||
+  fail "project: design nodes off the circle ($(field "$work/project.json" boundary_error_max))"
 
 make_case laplace "[$design]" '{"method": "laplace", "cvt": false}'
 "$mm" deform "$work/laplace.case.json" --quiet > /dev/null 2>&1
