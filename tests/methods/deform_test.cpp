@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/deform.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+
+namespace meshmorph {
+namespace {
+
+// The unit square (cube): "bottom" is the design, moved up by a Gaussian bump of height
+// `height` (its nodes Prescribed to x + g(x) e_y), the other sides are the fixed far field.
+BoundaryTargets bump(const Mesh& mesh, const Topology& topo, double height) {
+  BoundaryTargets bc;
+  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
+  for (std::int32_t v : boundary_nodes(mesh, topo)) bc.role[static_cast<std::size_t>(v)] = NodeRole::Fixed;
+  bc.target = mesh.x;
+  bc.normal = Eigen::MatrixXd::Zero(mesh.dim, mesh.x.cols());
+  const int up = mesh.dim - 1;
+  for (std::int32_t v : mesh.group_nodes(*mesh.find_group("bottom"))) {
+    const double r2 = (mesh.x.col(v).head(mesh.dim - 1).array() - 0.5).square().sum();
+    bc.role[static_cast<std::size_t>(v)] = NodeRole::Prescribed;
+    bc.target(up, v) += height * std::exp(-r2 / 0.02);
+  }
+  return bc;
+}
+
+TEST(Deform, NoMotionLeavesTheMeshAlone) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 8);
+  const Topology topo = build_topology(mesh);
+  DeformOptions o;
+  o.cvt = false;
+  const DeformResult r = deform(mesh, topo, bump(mesh, topo, 0.0), mesh.x, o);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LT((r.x - mesh.x).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(r.linear_solves, 2);
+}
+
+// A large local bump: the Eikonal extension keeps every cell valid, the design nodes reach
+// their targets, the far field does not move; with the CVT step the design nodes stay on the
+// raised (discrete) surface and are spread more evenly.
+TEST(Deform, LargeBumpStaysValid) {
+  for (ElementType type : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron})
+    for (int order : {1, 2}) {
+      if (type == ElementType::Tetrahedron && order == 2) continue;
+      SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+      const int n = type == ElementType::Tetrahedron ? 8 : 16;
+      const Mesh mesh = structured_mesh(type, order, n);
+      const Topology topo = build_topology(mesh);
+      const BoundaryTargets bc = bump(mesh, topo, 0.3);
+      for (bool cvt : {false, true}) {
+        DeformOptions o;
+        o.cvt = cvt;
+        const DeformResult r = deform(mesh, topo, bc, mesh.x, o);
+        ASSERT_TRUE(r.converged) << r.message;
+        Mesh moved = mesh;
+        moved.x = r.x;
+        EXPECT_EQ(count_invalid_cells(moved), 0u) << "cvt " << cvt;
+        for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+          const auto c = static_cast<Eigen::Index>(i);
+          if (bc.role[i] == NodeRole::Fixed) {
+            EXPECT_TRUE(r.x.col(c) == mesh.x.col(c)) << i;
+          }
+          if (bc.role[i] == NodeRole::Prescribed && !cvt) {
+            EXPECT_TRUE(r.x.col(c) == bc.target.col(c)) << i;
+          }
+        }
+        if (cvt && mesh.dim == 2) {
+          EXPECT_LT(r.cvt.spacing_ratio_after, r.cvt.spacing_ratio_before);
+        }
+      }
+    }
+}
+
+TEST(Deform, NeedsADesignAndAFarField) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 4);
+  const Topology topo = build_topology(mesh);
+  BoundaryTargets bc = bump(mesh, topo, 0.1);
+  BoundaryTargets no_design = bc;
+  for (NodeRole& r : no_design.role)
+    if (r == NodeRole::Prescribed) r = NodeRole::Fixed;
+  EXPECT_THROW(deform(mesh, topo, no_design, mesh.x), InputError);
+  BoundaryTargets no_far = bc;
+  for (NodeRole& r : no_far.role)
+    if (r == NodeRole::Fixed) r = NodeRole::Prescribed;
+  EXPECT_THROW(deform(mesh, topo, no_far, mesh.x), InputError);
+  DeformOptions laplace;
+  laplace.method = DeformMethod::Laplace;
+  laplace.cvt = false;
+  EXPECT_NO_THROW(deform(mesh, topo, no_far, mesh.x, laplace));
+}
+
+}  // namespace
+}  // namespace meshmorph
