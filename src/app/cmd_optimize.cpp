@@ -8,6 +8,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <omp.h>
 #include <Eigen/Eigenvalues>
 
 #include "app/detail/method_output.h"
@@ -70,7 +71,7 @@ Eigen::MatrixXd untangled(const Mesh& mesh, const Topology& topology, const std:
   const BoundaryTargets bc = detail::fixed_boundary(mesh, topology);
   UntangleOptions uo;
   uo.reference = UntangleReference::Regular;
-  uo.threads = optimize_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
+  uo.threads = threads;
   Untangler untangler(mesh, topology, bc, uo);
   Eigen::MatrixXd x = mesh.x;
   const UntangleResult r = untangler.solve(mesh.x, x);
@@ -150,6 +151,10 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   } else {
     mesh = read_mesh(a.input);
   }
+  // Every element loop of the run (untangling, quality, validity) on the threads optimize
+  // picks for this size: one for small meshes.
+  threads = optimize_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
+  if (threads > 0) omp_set_num_threads(threads);
   const OptimizeSettings settings = read_settings(c ? c->options : nlohmann::json::object(), a.input, a, threads);
   const OptimizeOptions& options = settings.options;
   const int d = mesh.dim;
