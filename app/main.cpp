@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   meshmorph::add_untangle_command(app, run, common.threads);
   meshmorph::add_fit_command(app, run, common.threads);
   meshmorph::add_deform_command(app, run, common.threads);
+  meshmorph::add_optimize_command(app, run, common.threads);
   app.require_subcommand(1);
 
   try {

@@ -61,16 +61,6 @@ UntangleOptions read_options(const nlohmann::json& options, const std::string& f
   return o;
 }
 
-// A bare mesh: every boundary node fixed, the interior free.
-BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology) {
-  BoundaryTargets bc;
-  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
-  bc.target = mesh.x;
-  bc.normal = Eigen::MatrixXd::Zero(mesh.dim, static_cast<Eigen::Index>(mesh.n_nodes()));
-  for (std::int32_t node : boundary_nodes(mesh, topology)) bc.role[static_cast<std::size_t>(node)] = NodeRole::Fixed;
-  return bc;
-}
-
 Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const bool is_case = std::filesystem::path(a.input).extension() == ".json";
@@ -106,7 +96,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   std::optional<BoundaryMotion> motion;
   BoundaryTargets bare;
   if (c) motion.emplace(*c, input, topology);
-  else bare = fixed_boundary(input, topology);
+  else bare = detail::fixed_boundary(input, topology);
   const BoundaryTargets& bc = motion ? motion->targets() : bare;
   const int steps = c ? c->steps : 1;
 

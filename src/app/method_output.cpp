@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "meshmorph/fem/trace.h"
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph::detail {
@@ -24,6 +25,15 @@ std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen
     ++count;
   }
   return {max, count ? std::sqrt(sum / static_cast<double>(count)) : 0.0};
+}
+
+BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology) {
+  BoundaryTargets bc;
+  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
+  bc.target = mesh.x;
+  bc.normal = Eigen::MatrixXd::Zero(mesh.dim, static_cast<Eigen::Index>(mesh.n_nodes()));
+  for (std::int32_t node : boundary_nodes(mesh, topology)) bc.role[static_cast<std::size_t>(node)] = NodeRole::Fixed;
+  return bc;
 }
 
 std::filesystem::path step_path(const std::filesystem::path& out, int step) {

@@ -16,10 +16,30 @@ namespace meshmorph {
 
 template <int d>
 FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
-                          const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x)
+                          const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
+                          const std::vector<FitTerm>& slides)
     : mesh_(&mesh), terms_(&terms), options_(options), x_(x) {
   targets_ = build_targets<d>(mesh, x, options.target);
   dofs_ = DofMap::from_mask(d, fixed);
+  slide_sigma_.reserve(slides.size());  // no reallocation: SlideNode points into it
+  std::vector<int> slot(mesh.n_nodes(), -1);
+  for (const FitTerm& t : slides) {
+    slide_sigma_.push_back(t.sigma);
+    for (std::int32_t node : t.nodes) {
+      int& k = slot[static_cast<std::size_t>(node)];
+      if (k < 0) {
+        k = static_cast<int>(slides_.size());
+        slides_.push_back({node, dofs_.first(static_cast<std::size_t>(node)), 0, {}});
+      }
+      SlideNode& sn = slides_[static_cast<std::size_t>(k)];
+      MESHMORPH_CHECK(sn.m < d - 1, "FitProblem: a slide node lies on d constraints (fix it instead)");
+      MESHMORPH_CHECK(dofs_.first(static_cast<std::size_t>(node) + 1) - sn.first == d, "FitProblem: a slide node has a fixed DOF");
+      sn.sigma[static_cast<std::size_t>(sn.m++)] = &slide_sigma_.back();
+    }
+  }
+  slide_of_row_.assign(dofs_.n_free(), -1);
+  for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_row_[static_cast<std::size_t>(slides_[k].first)] = static_cast<std::int32_t>(k);
+  MESHMORPH_CHECK(project_slides(x_), "FitProblem: a slide node cannot be projected onto its surface");
   assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_);
   metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
   min_det0_ = min_det(x);
@@ -50,24 +70,71 @@ double FitProblem<d>::min_det(const Eigen::MatrixXd& x) const {
 }
 
 template <int d>
+double FitProblem<d>::target_measure() const {
+  double v = 0.0;
+  for (const BlockTargets<d>& b : targets_.blocks)
+    for (const QuadratureTarget<d>& t : b.points) v += t.weight;
+  return v;
+}
+
+template <int d>
+std::array<double, 3> FitProblem<d>::metric_range() const {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t b = 0; b < mesh_->cells.size(); ++b) {
+    const CellBlock& block = mesh_->cells[b];
+    const BlockTargets<d>& targets = targets_.blocks[b];
+    const ShapeTable& table = *targets.table;
+    const int n = block.n_nodes_per_cell(), nq = targets.n_points();
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+#pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) reduction(min : lo) reduction(max : hi) reduction(+ : sum) schedule(static)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+      Eigen::Matrix<double, d, Eigen::Dynamic> X(d, n);
+      for (int a = 0; a < n; ++a) X.col(a) = x_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
+      const QuadratureTarget<d>* t = targets.cell(static_cast<std::size_t>(c));
+      for (int q = 0; q < nq; ++q) {
+        const MatT<d> T = X * table.grad(q) * t[q].W_inv;
+        const double mu = metric_->eval(T, Want::Value).mu;
+        lo = std::min(lo, mu);
+        hi = std::max(hi, mu);
+        sum += mu;
+      }
+    }
+    count += block.n_cells() * static_cast<std::size_t>(nq);
+  }
+  return {lo, count ? sum / static_cast<double>(count) : 0.0, hi};
+}
+
+template <int d>
+std::vector<std::int64_t> FitProblem<d>::node_blocks(const Eigen::SparseMatrix<double>& H,
+                                                     const std::vector<std::int32_t>& nodes) const {
+  std::vector<std::int64_t> offsets;
+  offsets.reserve(nodes.size() * d * d);
+  for (std::int32_t s : nodes)
+    for (int l = 0; l < d; ++l)
+      for (int k = 0; k < d; ++k) {
+        const std::int32_t row = dofs_.reduced(static_cast<std::size_t>(d) * s + k);
+        const std::int32_t col = dofs_.reduced(static_cast<std::size_t>(d) * s + l);
+        std::int64_t offset = -1;
+        if (row >= 0 && col >= 0) {
+          const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
+          const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
+          const int* it = std::lower_bound(begin, end, row);
+          MESHMORPH_CHECK(it != end && *it == row, "FitProblem: a node block is missing from the Hessian pattern");
+          offset = it - H.innerIndexPtr();
+        }
+        offsets.push_back(offset);
+      }
+  return offsets;
+}
+
+template <int d>
 void FitProblem<d>::bind_blocks(const Eigen::SparseMatrix<double>& H) {
   block_offsets_.clear();
-  for (const FitTerm& t : *terms_)
-    for (std::int32_t s : t.nodes)
-      for (int l = 0; l < d; ++l)
-        for (int k = 0; k < d; ++k) {
-          const std::int32_t row = dofs_.reduced(static_cast<std::size_t>(d) * s + k);
-          const std::int32_t col = dofs_.reduced(static_cast<std::size_t>(d) * s + l);
-          std::int64_t offset = -1;
-          if (row >= 0 && col >= 0) {
-            const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
-            const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
-            const int* it = std::lower_bound(begin, end, row);
-            MESHMORPH_CHECK(it != end && *it == row, "FitProblem: a node block is missing from the Hessian pattern");
-            offset = it - H.innerIndexPtr();
-          }
-          block_offsets_.push_back(offset);
-        }
+  for (const FitTerm& t : *terms_) {
+    const std::vector<std::int64_t> o = node_blocks(H, t.nodes);
+    block_offsets_.insert(block_offsets_.end(), o.begin(), o.end());
+  }
 }
 
 template <int d>
@@ -110,6 +177,130 @@ void FitProblem<d>::add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode
 }
 
 template <int d>
+Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::normals(const SlideNode& s, const Eigen::MatrixXd& x) const {
+  Eigen::Matrix<double, d, Eigen::Dynamic> N(d, s.m);
+  for (int i = 0; i < s.m; ++i) N.col(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(x.col(s.node));
+  // Orthonormal basis of the normals' span (modified Gram–Schmidt; two normals are never parallel
+  // at a node the caller let slide on a curve).
+  for (int i = 0; i < s.m; ++i) {
+    for (int j = 0; j < i; ++j) N.col(i) -= N.col(j).dot(N.col(i)) * N.col(j);
+    N.col(i).normalize();
+  }
+  return N;
+}
+
+template <int d>
+bool FitProblem<d>::project_slides(Eigen::MatrixXd& x) const {
+  bool ok = true;
+  const auto n = static_cast<std::ptrdiff_t>(slides_.size());
+#pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) reduction(&& : ok) schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const SlideNode& s = slides_[static_cast<std::size_t>(k)];
+    Eigen::Matrix<double, d, 1> p = x.col(s.node);
+    // Gauss–Newton on σ_i(p) = 0 with minimal-norm corrections −Jᵀ(JJᵀ)⁻¹σ: one step for planes,
+    // and a sphere's exact closest point in one step too (σ is the distance, ∇σ radial).
+    bool done = false;
+    for (int it = 0; it < 50 && !done; ++it) {
+      Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
+      Eigen::VectorXd r(s.m);
+      for (int i = 0; i < s.m; ++i) {
+        r[i] = s.sigma[static_cast<std::size_t>(i)]->value(p);
+        J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
+      }
+      const Eigen::Matrix<double, d, 1> dx = -J.transpose() * (J * J.transpose()).ldlt().solve(r);
+      if (!dx.allFinite()) break;
+      p += dx;
+      done = dx.norm() <= 1e-15 * std::max(1.0, p.norm());
+    }
+    ok = ok && done;
+    x.col(s.node) = p;
+  }
+  return ok;
+}
+
+template <int d>
+void FitProblem<d>::project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const {
+  for (const SlideNode& s : slides_) {
+    const Eigen::Matrix<double, d, Eigen::Dynamic> N = normals(s, x);
+    auto g = gradient.segment<d>(s.first);
+    g -= N * (N.transpose() * g);
+  }
+}
+
+template <int d>
+void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
+  Eigen::SparseMatrix<double>& H = out.hessian;
+  if (slide_offsets_.empty()) {
+    std::vector<std::int32_t> nodes;
+    for (const SlideNode& s : slides_) nodes.push_back(s.node);
+    slide_offsets_ = node_blocks(H, nodes);
+  }
+  std::vector<Eigen::Matrix<double, d, d>> P(slides_.size());
+  std::vector<Eigen::Matrix<double, d, Eigen::Dynamic>> N(slides_.size());
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    N[k] = normals(slides_[k], x_);
+    P[k] = Eigen::Matrix<double, d, d>::Identity() - N[k] * N[k].transpose();
+  }
+  const int* outer = H.outerIndexPtr();
+  const int* inner = H.innerIndexPtr();
+  double* values = H.valuePtr();
+  // Rows: the d rows of a slide node are consecutive in every column that holds them.
+  const auto n_cols = static_cast<std::ptrdiff_t>(H.outerSize());
+#pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) schedule(static)
+  for (std::ptrdiff_t col = 0; col < n_cols; ++col)
+    for (int t = outer[col]; t < outer[col + 1]; ++t)
+      if (const std::int32_t k = slide_of_row_[static_cast<std::size_t>(inner[t])]; k >= 0) {
+        Eigen::Map<Eigen::Matrix<double, d, 1>> v(values + t);
+        v = P[static_cast<std::size_t>(k)] * v;
+        t += d - 1;
+      }
+  // Columns: the d columns of a node share their row pattern.
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    const int c0 = slides_[k].first, len = outer[c0 + 1] - outer[c0];
+    for (int t = 0; t < len; ++t) {
+      Eigen::Matrix<double, d, 1> v;
+      for (int l = 0; l < d; ++l) v[l] = values[outer[c0 + l] + t];
+      v = P[k] * v;
+      for (int l = 0; l < d; ++l) values[outer[c0 + l] + t] = v[l];
+    }
+  }
+  // Diagonal blocks: stiffness c along the normals, curvature of the constraints.
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    const SlideNode& s = slides_[k];
+    const std::int64_t* o = slide_offsets_.data() + k * d * d;
+    Eigen::Matrix<double, d, d> B;
+    for (int l = 0; l < d; ++l)
+      for (int i = 0; i < d; ++i) B(i, l) = values[o[l * d + i]];
+    const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
+    const Eigen::Matrix<double, d, 1> g = out.gradient.segment<d>(s.first);
+    Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
+    for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
+    const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
+    Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
+    for (int i = 0; i < s.m; ++i) {
+      const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
+      if (hs.allFinite()) K -= lambda[i] * P[k] * hs * P[k];
+    }
+    if (mode == HessianMode::Projected) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, d, d>> eig(0.5 * (K + K.transpose()));
+      K = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    }
+    const double c = B.trace() > 0.0 ? B.trace() / (d - s.m) : 1.0;
+    B += K + c * N[k] * N[k].transpose();
+    for (int l = 0; l < d; ++l)
+      for (int i = 0; i < d; ++i) values[o[l * d + i]] = B(i, l);
+  }
+  project_gradient(x_, out.gradient);
+}
+
+template <int d>
+bool FitProblem<d>::step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const {
+  out = x_;
+  dofs_.add_step(p, alpha, out);
+  return slides_.empty() || project_slides(out);
+}
+
+template <int d>
 double FitProblem<d>::metric_stiffness() {
   AssemblyOptions o;
   o.want = Want::Hessian;
@@ -134,7 +325,9 @@ void FitProblem<d>::evaluate(HessianMode mode, Assembly& out) {
   o.hessian = mode;
   o.threads = options_.threads;
   assembler_->assemble(*metric_, x_, o, out);
-  if (std::isfinite(out.value)) add_penalty(x_, Want::Hessian, mode, out);
+  if (!std::isfinite(out.value)) return;
+  add_penalty(x_, Want::Hessian, mode, out);
+  if (!slides_.empty()) constrain_hessian(mode, out);
 }
 
 template <int d>
@@ -145,6 +338,7 @@ double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
   Assembly a;
   assembler_->assemble(*metric_, x, o, a);
   add_penalty(x, Want::Gradient, HessianMode::Projected, a);
+  project_gradient(x, a.gradient);
   return a.gradient.norm();
 }
 
@@ -156,16 +350,14 @@ void FitProblem<d>::remember_current() {
 
 template <int d>
 double FitProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
-  trial_ = x_;
-  dofs_.add_step(p, alpha, trial_);
+  if (!step_to(p, alpha, trial_)) return std::numeric_limits<double>::infinity();
   const double v = assembler_->value(*metric_, trial_, {}, options_.threads);
   return std::isfinite(v) ? v + penalty_value(trial_) : v;
 }
 
 template <int d>
 bool FitProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
-  trial_ = x_;
-  dofs_.add_step(p, alpha, trial_);
+  if (!step_to(p, alpha, trial_)) return false;
   if (!(min_det(trial_) > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
   if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;      // eq. 14
   return gradient_norm(trial_) < options_.growth * gradient_norm_;  // §2.2
@@ -173,7 +365,8 @@ bool FitProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
 
 template <int d>
 void FitProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
-  dofs_.add_step(p, alpha, x_);
+  step_to(p, alpha, trial_);  // admissible() projected this very point
+  x_.swap(trial_);
   remember_current();
 }
 

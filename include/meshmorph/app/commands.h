@@ -43,6 +43,9 @@ void add_untangle_command(CLI::App& app, Command& run, const int& threads);
 void add_fit_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph deform CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1).
 void add_deform_command(CLI::App& app, Command& run, const int& threads);
+/// `meshmorph optimize MESH | CASE.json [-o OUT] [--report FILE] [--metric M] [--target T]
+/// [--boundary fixed|slide]`: TMOP mesh optimization (docs/optimize.md).
+void add_optimize_command(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
 void add_check_command(CLI::App& app, Command& run);
 

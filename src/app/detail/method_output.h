@@ -11,6 +11,7 @@
 #include "meshmorph/app/report.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/mesh/mesh.h"
+#include "meshmorph/mesh/topology.h"
 #include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph::detail {
@@ -18,6 +19,9 @@ namespace meshmorph::detail {
 /// Max and root-mean-square distance of the Prescribed nodes from their targets, and of the
 /// Slide nodes from their planes.
 std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen::MatrixXd& x);
+
+/// The boundary conditions of a bare mesh: every boundary node fixed, the interior free.
+BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology);
 
 /// `out` with the step number before the extension: out_0003.vtu (`output_each_step`).
 std::filesystem::path step_path(const std::filesystem::path& out, int step);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -17,11 +18,21 @@ namespace meshmorph {
 /// mode). admissible() applies the line-search rules of §2.2 and §3.4: det A > 0 at every
 /// validity sample, min det A > det_floor · its initial value (eq. 15), |∇F| and max |σ|
 /// grown by less than `growth` (eq. 14); F itself only decreases (Armijo).
+///
+/// Sliding (optimize): the nodes of each `slides` entry stay on its zero level set (a node
+/// in two entries on their intersection; all its DOFs must be free). With N an orthonormal
+/// basis of the constraint normals ∇σ_i at a slide node and P = I − N Nᵀ, the gradient there
+/// is P g, the Hessian's rows and columns of the node are multiplied by P, and its diagonal
+/// block gets c N Nᵀ (c its mean tangential diagonal, so the normal step is exactly 0) plus
+/// the constraint curvature −Σ λ_i P ∇²σ_i P with g = Σ λ_i ∇σ_i + P g (the Hessian of the
+/// Lagrangian on the tangent space; PSD-clamped in Projected mode). Trial points are
+/// projected back onto the constraints by Gauss–Newton (minimal-norm corrections).
 template <int d>
 class FitProblem final : public NewtonProblem {
  public:
   FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
-             const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x);
+             const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
+             const std::vector<FitTerm>& slides = {});
 
   std::size_t n_free() const { return dofs_.n_free(); }
   const Eigen::MatrixXd& state() const { return x_; }
@@ -35,10 +46,18 @@ class FitProblem final : public NewtonProblem {
   double min_det() const { return min_det(x_); }
   /// Mean diagonal of the projected metric Hessian at the free DOFs of the fitted nodes.
   double metric_stiffness();
+  /// Σ over every quadrature point of w_q |det W_q|: the measure of the target mesh, the
+  /// scale of F's rounding error (μ + 1 is O(1) per point for the TMOP metrics).
+  double target_measure() const;
   /// F at the current iterate.
   double energy() const { return assembler_->value(*metric_, x_, {}, options_.threads) + penalty_value(x_); }
   /// Value and gradient norm of F at x (the line search's reference).
   void remember_current();
+  /// |∇F| over the free DOFs at the iterate of the last remember_current().
+  double current_gradient_norm() const { return gradient_norm_; }
+  /// min, mean and max of μ(T) over the metric quadrature points of every cell at the
+  /// current iterate (+∞ where a point is inverted).
+  std::array<double, 3> metric_range() const;
 
   void evaluate(HessianMode mode, Assembly& out) override;
   double trial_value(const Eigen::VectorXd& p, double alpha) override;
@@ -50,6 +69,18 @@ class FitProblem final : public NewtonProblem {
   double gradient_norm(const Eigen::MatrixXd& x);  // |∇F| over the free DOFs
   double penalty_value(const Eigen::MatrixXd& x) const;
   void bind_blocks(const Eigen::SparseMatrix<double>& H);
+  std::vector<std::int64_t> node_blocks(const Eigen::SparseMatrix<double>& H, const std::vector<std::int32_t>& nodes) const;
+  // Slide constraints of one node: the level sets it lies on (1 or 2, < d).
+  struct SlideNode {
+    std::int32_t node = 0, first = 0;  // node, reduced index of its first DOF
+    int m = 0;
+    std::array<const LevelSetFunction*, 2> sigma{};
+  };
+  Eigen::Matrix<double, d, Eigen::Dynamic> normals(const SlideNode& s, const Eigen::MatrixXd& x) const;
+  bool project_slides(Eigen::MatrixXd& x) const;  // false when a node cannot be projected
+  void project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const;
+  void constrain_hessian(HessianMode mode, Assembly& out);
+  bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
 
   const Mesh* mesh_;
   const std::vector<FitTerm>* terms_;
@@ -61,6 +92,10 @@ class FitProblem final : public NewtonProblem {
   // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
   // the Hessian's value array, −1 for a fixed DOF.
   std::vector<std::int64_t> block_offsets_;
+  std::vector<LevelSetFunction> slide_sigma_;
+  std::vector<SlideNode> slides_;
+  std::vector<std::int32_t> slide_of_row_;  // reduced index of a slide node's first DOF → slot, else −1
+  std::vector<std::int64_t> slide_offsets_;  // the d×d diagonal block of each slide node, as block_offsets_
   double min_det0_ = 0.0;
   double gradient_norm_ = 0.0, error_ = 0.0;  // at the current iterate, for the line search
   Eigen::MatrixXd x_, trial_;

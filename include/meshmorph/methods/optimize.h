@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/energy/target.h"
+#include "meshmorph/methods/fit.h"
+#include "meshmorph/mesh/topology.h"
+#include "meshmorph/solve/linear_solver.h"
+
+namespace meshmorph {
+
+/// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
+/// mesh-optimizer runs of docs/optimize.md.
+struct OptimizeOptions {
+  std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
+  TargetKind target = TargetKind::Ideal;
+  int max_newton = 50;           ///< Newton steps at most (MFEM -ni)
+  double rtol = 1e-10;           ///< stop at |∇F| ≤ rtol·|∇F₀| (MFEM -rtol)
+  double growth = 1.2;           ///< line search: |∇F| grows by less than this (§2.2)
+  /// min det A stays above det_floor · its initial value; 0: det A > 0 only, as TMOP (the
+  /// barrier of μ keeps elements from collapsing; a floor would stall meshes that must thin one)
+  double det_floor = 0.0;
+  LinearSolverKind solver = LinearSolverKind::Auto;
+  int threads = 0;  ///< OpenMP threads; 0 = optimize_threads(0, DOFs)
+};
+
+/// The OpenMP threads for a problem of `n_dofs` unknowns when `threads` are asked for: those,
+/// or for 0, one thread below 30 000 DOFs (where the barriers of the coloured element loops
+/// cost more than a second thread saves, many times more on a loaded machine) and the OpenMP
+/// default above.
+int optimize_threads(int threads, std::size_t n_dofs);
+
+/// One Newton step of the report's history.
+struct OptimizeIteration {
+  int newton = 0;
+  double alpha = 0.0;          ///< step length (0 for the starting row)
+  double energy = 0.0;         ///< F = Σ_E ∫ μ after the step
+  double gradient_norm = 0.0;  ///< |∇F| over the free DOFs
+  double min_det = 0.0;        ///< min det A over the validity samples
+};
+
+struct OptimizeResult {
+  bool converged = false;
+  std::string message;
+  long long newton = 0, linear = 0;
+  double energy0 = 0.0, energy = 0.0;  ///< F before and after
+  double min_det0 = 0.0, min_det = 0.0;
+  double mu_min = 0.0, mu_mean = 0.0, mu_max = 0.0;  ///< over the quadrature points, after
+  std::vector<OptimizeIteration> history;
+};
+
+/// TMOP mesh optimization: minimises F = Σ_E ∫_{E_t} μ(A W⁻¹) over the DOFs not flagged in
+/// `fixed` (one flag per DOF, dim·node + k) from `x` (d × n, a valid mesh), by Newton with
+/// the line-search rules of paper 003 §2.2 (det A > 0 at every validity sample, F decreases,
+/// |∇F| grows by less than `growth`). The nodes of each `slides` entry move on the zero
+/// level set of its function (a node in two entries on their intersection curve): each
+/// Newton step is restricted to the tangent space there, and trial points are projected
+/// back onto the surface. Converged when |∇F| ≤ rtol·|∇F₀| or the Newton decrement is at
+/// rounding level. `x` is the last accepted iterate on return (always valid).
+OptimizeResult optimize_mesh(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& fixed,
+                             const std::vector<FitTerm>& slides, const OptimizeOptions& options, Eigen::MatrixXd& x);
+
+/// Sliding constraints for the boundary of a bare mesh (`--boundary slide`): the boundary
+/// facets whose nodes all lie on one plane (to 1e-10 of the mesh's size) are grouped by
+/// plane. A boundary node on one such plane slides on it, a node on two (3D) slides on their
+/// intersection line (a feature edge: any nonzero dihedral angle), and every other boundary
+/// node (corners, nodes of curved facets) is fixed in `fixed` (one flag per DOF). Returns one
+/// entry per plane that holds a sliding node.
+std::vector<FitTerm> planar_boundary_slides(const Mesh& mesh, const Topology& topology, std::vector<std::uint8_t>& fixed);
+
+}  // namespace meshmorph

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/optimize.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshmorph/error.h"
+#include "meshmorph/log.h"
+#include "meshmorph/solve/newton.h"
+#include "methods/detail/fit_problem.h"
+#include "methods/detail/format.h"
+
+namespace meshmorph {
+namespace {
+
+using detail::format;
+
+// TMOP optimization is fitting without a level-set term: FitProblem with no fitted nodes is
+// F = Σ_E ∫ μ with the same line-search rules.
+template <int d>
+OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& fixed,
+                            const std::vector<FitTerm>& slides, const OptimizeOptions& options, Eigen::MatrixXd& x) {
+  FitOptions fo;
+  fo.metric = options.metric;
+  fo.target = options.target;
+  fo.growth = options.growth;
+  fo.det_floor = options.det_floor;
+  fo.threads = optimize_threads(options.threads, fixed.size() - static_cast<std::size_t>(std::count(fixed.begin(), fixed.end(), 1)));
+  const std::vector<FitTerm> no_terms;
+  OptimizeResult result;
+  FitProblem<d> P(mesh, topology, no_terms, fixed, fo, x, slides);
+  result.min_det0 = result.min_det = P.min_det();
+  MESHMORPH_CHECK(result.min_det0 > 0.0, "optimize: the input mesh must be valid");
+  result.energy0 = result.energy = P.energy();
+  P.remember_current();
+  const double g0 = P.current_gradient_norm();
+  result.history.push_back({0, 0.0, result.energy0, g0, result.min_det0});
+
+  bool converged = P.n_free() == 0 || g0 == 0.0;
+  std::string why;
+  if (!converged) {
+    LinearSolverOptions lo;
+    lo.kind = options.solver;
+    lo.block_size = d;
+    lo.dim = d;
+    lo.threads = fo.threads;
+    const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
+    NewtonOptions no;
+    no.exact_first = true;
+    no.max_iterations = options.max_newton;
+    // Rounding level of F (μ = |T|²/(2τ) − 1 cancels to rounding where T is ideal, so the
+    // error scales with the measure, not with F): below it no step can be told from noise.
+    no.decrement_tolerance = 1e-15 * (std::abs(result.energy0) + P.target_measure());
+    bool reached = false;
+    no.on_step = [&](int step, double alpha) {
+      const double g = P.current_gradient_norm();
+      result.history.push_back({step, alpha, P.energy(), g, P.min_det()});
+      log_progress(format("optimize: Newton %d: F %.10g, |grad F| %.3g, alpha %.3g", step, result.history.back().energy, g, alpha));
+      reached = g <= options.rtol * g0;
+      return !reached;
+    };
+    const NewtonStats s = newton(P, *solver, no, nullptr);
+    result.newton = s.iterations;
+    result.linear = s.linear_solves;
+    converged = reached || s.converged;
+    if (!converged) why = s.message;
+  }
+  x = P.state();
+  result.energy = P.energy();
+  result.min_det = P.min_det();
+  const std::array<double, 3> mu = P.metric_range();
+  result.mu_min = mu[0];
+  result.mu_mean = mu[1];
+  result.mu_max = mu[2];
+  result.converged = converged;
+  const double g = result.history.back().gradient_norm;
+  result.message = converged ? format("optimized: F %.6g -> %.6g, |grad F| reduced by %.2g in %lld Newton steps", result.energy0,
+                                      result.energy, g0 > 0.0 ? g / g0 : 0.0, result.newton)
+                             : format("stopped after %lld Newton steps at |grad F| / |grad F0| = %.2g: ", result.newton,
+                                      g / g0) + why;
+  return result;
+}
+
+}  // namespace
+
+int optimize_threads(int threads, std::size_t n_dofs) { return threads > 0 ? threads : n_dofs < 30000 ? 1 : 0; }
+
+OptimizeResult optimize_mesh(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& fixed,
+                             const std::vector<FitTerm>& slides, const OptimizeOptions& options, Eigen::MatrixXd& x) {
+  MESHMORPH_CHECK(fixed.size() == static_cast<std::size_t>(mesh.dim) * mesh.n_nodes(), "optimize: one fixed flag per DOF");
+  return mesh.dim == 2 ? optimize_dim<2>(mesh, topology, fixed, slides, options, x)
+                       : optimize_dim<3>(mesh, topology, fixed, slides, options, x);
+}
+
+}  // namespace meshmorph

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/methods/optimize.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "meshmorph/fem/elevate.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "methods/detail/fit_problem.h"
+
+namespace meshmorph {
+namespace {
+
+std::vector<std::uint8_t> fixed_boundary(const Mesh& mesh, const Topology& topo) {
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(mesh.dim) * mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topo)) std::fill_n(fixed.begin() + mesh.dim * node, mesh.dim, 1);
+  return fixed;
+}
+
+// Moves the interior nodes at random by up to `amount` of the node spacing `h`.
+Eigen::MatrixXd jitter_interior(const Mesh& mesh, const Topology& topo, double amount, double h, unsigned seed) {
+  std::vector<std::uint8_t> boundary(mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topo)) boundary[static_cast<std::size_t>(node)] = 1;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount * h, amount * h);
+  Eigen::MatrixXd x = mesh.x;
+  for (Eigen::Index i = 0; i < x.cols(); ++i)
+    if (!boundary[static_cast<std::size_t>(i)])
+      for (Eigen::Index k = 0; k < x.rows(); ++k) x(k, i) += u(rng);
+  return x;
+}
+
+// The ideal grid minimises μ (μ = 0 on every cell): optimize takes no step and moves nothing.
+TEST(Optimize, AnOptimalMeshStaysPut) {
+  for (ElementType type : {ElementType::Quadrilateral, ElementType::Hexahedron}) {
+    const Mesh mesh = structured_mesh(type, 2, 3);
+    const Topology topo = build_topology(mesh);
+    Eigen::MatrixXd x = mesh.x;
+    const OptimizeResult r = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, {}, x);
+    EXPECT_TRUE(r.converged) << r.message;
+    EXPECT_EQ(r.newton, 0) << name_of(type);
+    EXPECT_NEAR(r.energy, 0.0, 1e-12);
+    EXPECT_NEAR(r.mu_max, 0.0, 1e-12);
+    EXPECT_EQ((x - mesh.x).cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
+// A jittered interior with the boundary fixed: Newton returns to the grid (the unique
+// μ = 0 configuration), to the relative gradient tolerance, and stays valid throughout.
+TEST(Optimize, AJitteredInteriorReturnsToTheGrid) {
+  for (ElementType type : {ElementType::Quadrilateral, ElementType::Hexahedron}) {
+    for (int order : {1, 2}) {
+      SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+      const int n = 4;
+      Mesh mesh = structured_mesh(type, order, n);
+      const Topology topo = build_topology(mesh);
+      const Eigen::MatrixXd grid = mesh.x;
+      mesh.x = jitter_interior(mesh, topo, 0.1, 1.0 / (n * order), 3);
+      ASSERT_EQ(count_invalid_cells(mesh), 0u);
+      Eigen::MatrixXd x = mesh.x;
+      const OptimizeResult r = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, {}, x);
+      EXPECT_TRUE(r.converged) << r.message;
+      EXPECT_GT(r.energy0, 1e-3);
+      EXPECT_LT(r.energy, 1e-12);
+      EXPECT_LT((x - grid).cwiseAbs().maxCoeff(), 1e-6);
+      EXPECT_LE(r.newton, 20);
+      for (std::size_t k = 1; k < r.history.size(); ++k) {
+        EXPECT_LE(r.history[k].energy, r.history[k - 1].energy);
+        EXPECT_GT(r.history[k].min_det, 0.0);
+      }
+    }
+  }
+}
+
+// A quarter annulus 1 ≤ r ≤ 2 (the unit square mapped by polar coordinates, so every node of
+// "left" lies on the unit circle exactly).
+Mesh quarter_annulus(ElementType type, int order, int n) {
+  Mesh mesh = structured_mesh(type, order, n);
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i) {
+    const double r = 1.0 + mesh.x(0, i), t = 0.5 * M_PI * mesh.x(1, i);
+    mesh.x.col(i) = Eigen::Vector2d(r * std::cos(t), r * std::sin(t));
+  }
+  return mesh;
+}
+
+LevelSetFunction unit_circle() {
+  return LevelSetFunction(LevelSet{SphereLevelSet{Eigen::Vector2d::Zero(), 1.0}, "circle"}, 2);
+}
+
+// The constrained derivatives: along the tangent t of a slide node, with trial points
+// projected back onto the circle, F' = gᵀt and F'' = tᵀHt (the Hessian holds the curvature
+// term −λ∇²σ of the Lagrangian); the normal direction is decoupled (H n = c n, g·n = 0).
+TEST(OptimizeSlide, DerivativesAlongTheCircleMatchDifferences) {
+  const Mesh mesh = quarter_annulus(ElementType::Quadrilateral, 2, 3);
+  const Topology topo = build_topology(mesh);
+  std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
+  std::vector<std::int32_t> left = mesh.group_nodes(*mesh.find_group("left"));
+  std::vector<std::int32_t> inner;  // the circle's nodes except its two ends (corners)
+  for (std::int32_t node : left)
+    if (std::abs(mesh.x(0, node)) > 1e-12 && std::abs(mesh.x(1, node)) > 1e-12) inner.push_back(node);
+  for (std::int32_t node : inner) std::fill_n(fixed.begin() + 2 * node, 2, 0);
+  const std::vector<FitTerm> no_terms, slides{{unit_circle(), inner}};
+  FitOptions o;
+  FitProblem<2> P(mesh, topo, no_terms, fixed, o, mesh.x, slides);
+  Assembly a;
+  P.evaluate(HessianMode::Exact, a);
+  DofMap dofs = DofMap::from_mask(2, fixed);
+  const double h = 1e-5;
+  for (std::int32_t node : inner) {
+    const Eigen::Vector2d p = mesh.x.col(node);
+    const Eigen::Vector2d t(-p[1], p[0]), nrm = p;
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(a.gradient.size());
+    const std::int32_t i = dofs.first(static_cast<std::size_t>(node));
+    e.segment<2>(i) = t;
+    const double f0 = P.energy(), fp = P.trial_value(e, h), fm = P.trial_value(e, -h);
+    const double d1 = (fp - fm) / (2 * h), d2 = (fp - 2 * f0 + fm) / (h * h);
+    EXPECT_NEAR(a.gradient.dot(e), d1, 1e-7 * std::max(1.0, std::abs(d1))) << node;
+    EXPECT_NEAR(e.dot(a.hessian * e), d2, 1e-4 * std::max(1.0, std::abs(d2))) << node;
+    EXPECT_NEAR(a.gradient.segment<2>(i).dot(nrm), 0.0, 1e-12);
+    Eigen::VectorXd en = Eigen::VectorXd::Zero(a.gradient.size());
+    en.segment<2>(i) = nrm;
+    const Eigen::VectorXd Hn = a.hessian * en;
+    EXPECT_NEAR((Hn - en * en.dot(Hn)).norm(), 0.0, 1e-10 * Hn.norm()) << node;
+  }
+}
+
+// Sliding on the circle: the nodes stay on it to rounding, and the optimum is better than
+// with them fixed (the fixed optimum is a feasible sliding state). Curved cells only: linear
+// ones meet the circle at their corners alone.
+TEST(OptimizeSlide, NodesStayOnTheCircleAndTheEnergyDrops) {
+  for (int order : {2, 3}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    const Mesh mesh = quarter_annulus(ElementType::Quadrilateral, order, 4);
+    const Topology topo = build_topology(mesh);
+    std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
+    Eigen::MatrixXd x_fixed = mesh.x;
+    const OptimizeResult rf = optimize_mesh(mesh, topo, fixed, {}, {}, x_fixed);
+    std::vector<std::int32_t> inner;
+    for (std::int32_t node : mesh.group_nodes(*mesh.find_group("left")))
+      if (std::abs(mesh.x(0, node)) > 1e-12 && std::abs(mesh.x(1, node)) > 1e-12) inner.push_back(node);
+    for (std::int32_t node : inner) std::fill_n(fixed.begin() + 2 * node, 2, 0);
+    Eigen::MatrixXd x = mesh.x;
+    const OptimizeResult r = optimize_mesh(mesh, topo, fixed, {{unit_circle(), inner}}, {}, x);
+    EXPECT_TRUE(rf.converged) << rf.message;
+    EXPECT_TRUE(r.converged) << r.message;
+    EXPECT_LT(r.energy, rf.energy);
+    double off = 0.0, moved = 0.0;
+    for (std::int32_t node : inner) {
+      off = std::max(off, std::abs(x.col(node).norm() - 1.0));
+      moved = std::max(moved, (x.col(node) - mesh.x.col(node)).norm());
+    }
+    EXPECT_LT(off, 1e-14);
+    EXPECT_GT(moved, 1e-3);  // they did slide
+    EXPECT_GT(r.min_det, 0.0);
+  }
+}
+
+// Planes of a cube: faces slide, edges slide on their lines, the 8 corners are fixed; from a
+// jittered state (interior and tangential boundary moves) Newton finds a μ = 0 grid again.
+TEST(OptimizeSlide, PlanarBoundarySlidesOnTheCubesFacesAndEdges) {
+  Mesh mesh = structured_mesh(ElementType::Hexahedron, 2, 3);
+  const Topology topo = build_topology(mesh);
+  std::vector<std::uint8_t> fixed(3 * mesh.n_nodes(), 0);
+  const std::vector<FitTerm> slides = planar_boundary_slides(mesh, topo, fixed);
+  EXPECT_EQ(slides.size(), 6u);
+  std::size_t fixed_nodes = 0;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed_nodes += fixed[3 * i];
+  EXPECT_EQ(fixed_nodes, 8u);
+  // Tangential jitter: a node moves only along the coordinates in which it is not on a face.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (const double v = mesh.x(k, i); v > 1e-12 && v < 1.0 - 1e-12) mesh.x(k, i) += u(rng);
+  ASSERT_EQ(count_invalid_cells(mesh), 0u);
+  Eigen::MatrixXd x = mesh.x;
+  const OptimizeResult r = optimize_mesh(mesh, topo, fixed, slides, {}, x);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_LT(r.energy, 1e-12);
+  for (const FitTerm& t : slides)
+    for (std::int32_t node : t.nodes) EXPECT_LT(std::abs(t.sigma.value(x.col(node))), 1e-14);
+}
+
+}  // namespace
+}  // namespace meshmorph
