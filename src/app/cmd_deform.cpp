@@ -135,6 +135,8 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   IterationCounts counts;
   Mesh moved = input;
   int cvt_iterations = 0;
+  bool cvt_converged = true;
+  std::size_t cvt_pinned = 0;
   for (int s = 1; s <= c.steps; ++s) {
     BoundaryTargets step = bc;
     step.target = motion.at(static_cast<double>(s) / c.steps);
@@ -154,6 +156,8 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
     counts.newton += r.newton;
     counts.linear += r.linear_solves;
     cvt_iterations += r.cvt.iterations;
+    cvt_converged = cvt_converged && (!options.cvt || r.cvt.converged);
+    cvt_pinned = r.cvt.pinned;
     moved.x = r.x;
     const std::size_t inverted = count_invalid_cells(moved);
     report.history.push_back({{"step", s}, {"cvt_iterations", r.cvt.iterations}, {"spacing_ratio_before", r.cvt.spacing_ratio_before},
@@ -193,6 +197,8 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   extra["cvt"] = options.cvt;
   extra["steps"] = c.steps;
   extra["cvt_iterations"] = cvt_iterations;
+  extra["cvt_converged"] = cvt_converged;
+  extra["cvt_pinned_nodes"] = cvt_pinned;
   extra["spacing_ratio_input"] = spacing_ratio(surface, input.x);
   extra["spacing_ratio_unrepaired"] = spacing_ratio(surface, bc.target);
   extra["spacing_ratio"] = spacing_ratio(surface, moved.x);
