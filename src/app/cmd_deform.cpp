@@ -135,6 +135,9 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   IterationCounts counts;
   Mesh moved = input;
   int cvt_iterations = 0;
+  EikonalDistances distances;
+  bool cvt_converged = true;
+  std::size_t cvt_pinned = 0;
   for (int s = 1; s <= c.steps; ++s) {
     BoundaryTargets step = bc;
     step.target = motion.at(static_cast<double>(s) / c.steps);
@@ -145,7 +148,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
     };
     DeformResult r;
     try {
-      r = deform(moved, topology, step, input.x, options, projection);
+      r = deform(moved, topology, step, input.x, options, projection, distances);
     } catch (const InputError& e) {
       throw InputError(a.case_file + ": " + e.what());
     }
@@ -154,7 +157,10 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
     counts.newton += r.newton;
     counts.linear += r.linear_solves;
     cvt_iterations += r.cvt.iterations;
+    cvt_converged = cvt_converged && (!options.cvt || r.cvt.converged);
+    cvt_pinned = r.cvt.pinned;
     moved.x = r.x;
+    distances = r.distances;
     const std::size_t inverted = count_invalid_cells(moved);
     report.history.push_back({{"step", s}, {"cvt_iterations", r.cvt.iterations}, {"spacing_ratio_before", r.cvt.spacing_ratio_before},
                               {"spacing_ratio_after", spacing_ratio(surface, moved.x)}, {"newton", r.newton},
@@ -193,6 +199,8 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   extra["cvt"] = options.cvt;
   extra["steps"] = c.steps;
   extra["cvt_iterations"] = cvt_iterations;
+  extra["cvt_converged"] = cvt_converged;
+  extra["cvt_pinned_nodes"] = cvt_pinned;
   extra["spacing_ratio_input"] = spacing_ratio(surface, input.x);
   extra["spacing_ratio_unrepaired"] = spacing_ratio(surface, bc.target);
   extra["spacing_ratio"] = spacing_ratio(surface, moved.x);

@@ -38,7 +38,7 @@ Eigen::VectorXd normalized(const Eigen::VectorXd& e) {
 
 DeformResult deform(const Mesh& mesh, const Topology& topology, const BoundaryTargets& bc,
                     const Eigen::MatrixXd& density_reference, const DeformOptions& options,
-                    const SurfaceProjection& projection) {
+                    const SurfaceProjection& projection, const EikonalDistances& previous) {
   const int d = mesh.dim;
   const std::size_t n = mesh.n_nodes();
   MESHMORPH_CHECK(bc.n_nodes() == n && bc.target.cols() == static_cast<Eigen::Index>(n),
@@ -77,14 +77,15 @@ DeformResult deform(const Mesh& mesh, const Topology& topology, const BoundaryTa
   if (far.empty()) throw InputError("deform: the Eikonal method needs a far field (a fixed boundary part) for ε₁");
   EikonalOptions eo = options.eikonal;
   eo.threads = options.threads;
-  const EikonalResult e1 = eikonal_distance(mesh, topology, far, eo);
-  const EikonalResult e2 = eikonal_distance(mesh, topology, design, eo);
+  const EikonalResult e1 = eikonal_distance(mesh, topology, far, eo, previous.far_field);
+  const EikonalResult e2 = eikonal_distance(mesh, topology, design, eo, previous.design);
   result.newton = e1.newton + e2.newton;
   if (!e1.converged || !e2.converged) {
     result.x = mesh.x;
     result.message = !e1.converged ? "far-field " + e1.message : "design " + e2.message;
     return result;
   }
+  result.distances = {e1.distance, e2.distance};
   const Eigen::VectorXd eps1 = normalized(e1.distance), eps2 = normalized(e2.distance);
 
   // Dirichlet: the design (its displacement), the far field and nodes in no cell (zero).

@@ -35,7 +35,7 @@ void eikonal_residual(const ScalarAssembler& assembler, const Eigen::VectorXd& e
 }  // namespace detail
 
 EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& zero_nodes,
-                               const EikonalOptions& options) {
+                               const EikonalOptions& options, const Eigen::VectorXd& start) {
   if (zero_nodes.empty()) throw InputError("eikonal: no node carries the zero boundary condition");
   const detail::ScalarAssembler assembler(mesh, topology, options.threads, "eikonal");
   const auto n = static_cast<Eigen::Index>(mesh.n_nodes());
@@ -52,34 +52,20 @@ EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const
   Eigen::VectorXd& eps = result.distance;
   Eigen::SparseMatrix<double> J;
   Eigen::VectorXd R;
-
-  // Start: −h₀ Δε = 1 (the linear part of the first stage), zero on the zero set.
-  double h = std::max(diameter, result.h);
-  detail::eikonal_residual(assembler, eps, h, R, J);  // at ε = 0: R = −∫N, J = h K
-  if (!solver.factorize(J)) throw InputError("eikonal: the linear system is singular");
-  solver.solve(-R, eps);
-
   auto residual_norm = [&](const Eigen::VectorXd& e, double hh) {
     Eigen::SparseMatrix<double> unused;
     Eigen::VectorXd r;
     detail::eikonal_residual(assembler, e, hh, r, unused);
     return solver.free_part(r).norm();
   };
-  // Intermediate stages only supply a starting point: a loose tolerance suffices there.
-  const double step_tol = options.tolerance * diameter, stage_tol = 1e-4 * diameter;
-  result.converged = true;
-  for (;;) {
+  // Newton at fixed h until the step is below `tol`; false when it does not get there.
+  auto newton = [&](double h, double tol) {
     ++result.stages;
-    bool stage_converged = false;
     for (int k = 0; k < options.max_newton; ++k) {
       detail::eikonal_residual(assembler, eps, h, R, J);
       const double r0 = solver.free_part(R).norm();
-      if (!solver.factorize(J)) {
-        result.converged = false;
-        result.message = "eikonal: singular Newton matrix at h = " + std::to_string(h);
-        return result;
-      }
       Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
+      if (!solver.factorize(J)) return false;
       solver.solve(-R, delta);
       ++result.newton;
       // Backtracking on the residual norm; the full step is taken near the solution.
@@ -90,12 +76,33 @@ EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const
         trial = eps + alpha * delta;
       }
       eps = trial;
-      if (alpha * delta.lpNorm<Eigen::Infinity>() <= (h <= result.h ? step_tol : stage_tol)) {
-        stage_converged = true;
-        break;
-      }
+      if (!eps.allFinite()) return false;
+      if (alpha * delta.lpNorm<Eigen::Infinity>() <= tol) return true;
     }
-    if (!stage_converged) {
+    return false;
+  };
+  const double step_tol = options.tolerance * diameter;
+
+  if (start.size() == n) {
+    eps = start;
+    for (std::size_t i = 0; i < fixed.size(); ++i)
+      if (fixed[i]) eps[static_cast<Eigen::Index>(i)] = 0.0;
+    result.converged = newton(result.h, step_tol);
+    if (result.converged) {
+      result.message = "converged from the given start";
+      return result;
+    }
+    eps.setZero();  // fall back to the continuation
+  }
+
+  // Start: −h₀ Δε = 1 (the linear part of the first stage), zero on the zero set.
+  double h = std::max(diameter, result.h);
+  detail::eikonal_residual(assembler, eps, h, R, J);  // at ε = 0: R = −∫N, J = h K
+  if (!solver.factorize(J)) throw InputError("eikonal: the linear system is singular");
+  solver.solve(-R, eps);
+  for (;;) {
+    // Intermediate stages only supply a starting point: a loose tolerance suffices there.
+    if (!newton(h, h <= result.h ? step_tol : 1e-4 * diameter)) {
       result.converged = false;
       result.message = "eikonal: Newton did not converge in " + std::to_string(options.max_newton) + " steps at h = " +
                        std::to_string(h);
@@ -104,6 +111,7 @@ EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const
     if (h <= result.h) break;
     h = std::max(0.01 * h, result.h);
   }
+  result.converged = true;
   result.message = "converged";
   return result;
 }

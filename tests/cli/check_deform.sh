@@ -3,7 +3,8 @@
 # check_deform.sh MESHMORPH EXAMPLES WORK: `deform` end to end — the obstacle of example 06
 # under a large normal bump ends valid, with its mesh and report, and the CVT step lowers the
 # design's spacing ratio below the unrepaired update's; projected onto a larger circle, the
-# nodes end on it; the Laplacian baseline runs and writes no invalid mesh; bad input
+# nodes end on it; translate, scale and rotate stay valid; the Laplacian baseline runs and
+# writes no invalid mesh; bad input
 # (a design group that does not exist, a displacement row for a node off the design, an
 # unknown option, no moving group) exits 2 and writes nothing.
 set -u
@@ -44,6 +45,18 @@ make_case project '[{"group": "obstacle", "project": {"sphere": {"center": [0, 0
 expect project 0
 awk -v e="$(field "$work/project.json" boundary_error_max)" 'BEGIN { exit !(e < 1e-10) }' ||
   fail "project: design nodes off the circle ($(field "$work/project.json" boundary_error_max))"
+
+# The rigid and scaling motions of the case file move the design too.
+make_case translate '[{"group": "obstacle", "translate": [0.3, 0.1]}, {"group": "farfield", "fixed": true}]'
+expect translate 0
+make_case scale '[{"group": "obstacle", "scale": {"center": [0, 0], "factor": 1.6}}, {"group": "farfield", "fixed": true}]' \
+  '{"method": "eikonal", "density": "input"}'
+expect scale 0
+make_case rotate '[{"group": "obstacle", "rotate": {"center": [0, 0], "degrees": 30}}, {"group": "farfield", "fixed": true}]'
+expect rotate 0
+for name in translate scale rotate; do
+  [ "$(field "$work/$name.json" inverted_elements)" = 0 ] || fail "$name: inverted elements"
+done
 
 make_case laplace "[$design]" '{"method": "laplace", "cvt": false}'
 "$mm" deform "$work/laplace.case.json" --quiet > /dev/null 2>&1

@@ -97,6 +97,23 @@ TEST(Eikonal, NaturalConditionElsewhere) {
     }
 }
 
+// From the solution on a slightly moved mesh, Newton converges at the target h without the
+// continuation, to the solution the continuation finds.
+TEST(Eikonal, StartsFromAGivenSolution) {
+  const Mesh mesh = testing::ball_mesh(ElementType::Triangle, 1, 16);
+  const Topology topo = build_topology(mesh);
+  const std::vector<std::int32_t> zero = boundary_nodes(mesh, topo);
+  Mesh moved = mesh;
+  moved.x *= 1.05;
+  const EikonalResult before = eikonal_distance(mesh, topo, zero);
+  const EikonalResult cold = eikonal_distance(moved, topo, zero);
+  const EikonalResult warm = eikonal_distance(moved, topo, zero, {}, before.distance);
+  ASSERT_TRUE(warm.converged) << warm.message;
+  EXPECT_EQ(warm.stages, 1);
+  EXPECT_LT(warm.newton, cold.newton);
+  EXPECT_LT((warm.distance - cold.distance).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
 TEST(Eikonal, NoZeroNodesIsAnInputError) {
   const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 2);
   EXPECT_THROW(eikonal_distance(mesh, build_topology(mesh), {}), InputError);

@@ -46,8 +46,16 @@ struct DeformOptions {
   int threads = 0;            ///< OpenMP threads; 0 = the OpenMP default
 };
 
+/// The Eikonal distances of an update on its input mesh: Newton starts from them in the next
+/// update of a sequence, whose mesh differs only by the deformation.
+struct EikonalDistances {
+  Eigen::VectorXd far_field;  ///< ε₁
+  Eigen::VectorXd design;     ///< ε₂
+};
+
 struct DeformResult {
   Eigen::MatrixXd x;          ///< dim × n_nodes: the deformed mesh
+  EikonalDistances distances; ///< empty for the Laplace method
   CvtResult cvt;              ///< the CVT step (iterations 0 when it was off)
   int newton = 0;             ///< Newton steps of the two Eikonal solves
   int linear_solves = 0;      ///< linear solves of the volume extension
@@ -69,10 +77,11 @@ struct DeformResult {
 ///    distance per options.diffusion), SUPG-stabilized, one sparse LU for all components.
 ///    Laplace: laplace_morph with the design nodes prescribed.
 /// `density_reference` (d × n_nodes) gives CvtDensity::Input its facet sizes (the input mesh).
+/// `previous`: the distances of the previous update of a sequence (start of both Newton solves).
 /// Throws InputError when no node is Prescribed, when Eikonal has no Fixed far field, or when
 /// a cell has det J ≤ 0. Does not check the validity of the result (the caller does).
 DeformResult deform(const Mesh& mesh, const Topology& topology, const BoundaryTargets& bc,
                     const Eigen::MatrixXd& density_reference, const DeformOptions& options = {},
-                    const SurfaceProjection& projection = {});
+                    const SurfaceProjection& projection = {}, const EikonalDistances& previous = {});
 
 }  // namespace meshmorph

@@ -24,7 +24,7 @@ struct EikonalResult {
   Eigen::VectorXd distance;  ///< ε per node (0 on the zero set; nodes in no cell: 0)
   double h = 0.0;            ///< the stabilization used
   int newton = 0;            ///< Newton steps over all stages
-  int stages = 0;            ///< continuation stages (h divided by 100 from the mesh diameter)
+  int stages = 0;            ///< Newton solves at fixed h (continuation stages, or 1 from `start`)
   bool converged = false;
   std::string message;
 };
@@ -41,8 +41,12 @@ struct EikonalResult {
 /// stage converged by Newton with a backtracking line search on the residual norm (loosely,
 /// to 1e-4 of the diameter, before the last).
 ///
+/// `start` (one value per node, e.g. the solution on the mesh before its last deformation):
+/// Newton starts from it at the target h, without the continuation, which it falls back to
+/// when that does not converge. Empty: the continuation.
+///
 /// Throws InputError when `zero_nodes` is empty or a cell has det J ≤ 0.
 EikonalResult eikonal_distance(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& zero_nodes,
-                               const EikonalOptions& options = {});
+                               const EikonalOptions& options = {}, const Eigen::VectorXd& start = {});
 
 }  // namespace meshmorph
