@@ -45,8 +45,10 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   OptimizeSettings s;
   OptimizeOptions& o = s.options;
   OptionReader r(json, file);
-  std::string target = "ideal", solver = "auto";
+  std::string target = "ideal", solver = "auto", quadrature = "lobatto";
   r.read("metric", o.metric);
+  r.read("quadrature", quadrature, {"lobatto", "gauss"});
+  o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
   r.read("target", target, {"ideal", "input"});
   r.read("boundary", s.boundary, {"fixed", "slide"});
   r.read("max_newton", o.max_newton, 1, 100000);
@@ -245,7 +247,9 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["boundary"] = settings.boundary;
   int degree = 0;
   for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
-  extra["quadrature"] = "Gauss (tensor cells) / symmetric (simplices), degree 2p+1 / 2p, max " + std::to_string(degree);
+  extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +
+                        " products of degree 2p+1 on tensor cells, symmetric rules of degree 2p on simplices (max degree " +
+                        std::to_string(degree) + ")";
   extra["initial_inverted_elements"] = initial_inverted;
   extra["untangle_newton"] = untangle_newton;
   extra["slide_nodes"] = slide_nodes;

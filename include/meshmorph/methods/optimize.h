@@ -18,6 +18,11 @@ namespace meshmorph {
 struct OptimizeOptions {
   std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
   TargetKind target = TargetKind::Ideal;
+  /// Gauss–Lobatto points on tensor cells (MFEM's -qt 1), degree 2p + 1 (p + 2 points per
+  /// direction): they include the corners and edges, where the barrier of μ must act on
+  /// curved cells (interior Gauss points alone let det A reach 0 at a corner). Simplices
+  /// keep their symmetric rules (degree 2p).
+  QuadratureFamily quadrature = QuadratureFamily::Lobatto;
   int max_newton = 50;           ///< Newton steps at most (MFEM -ni)
   double rtol = 1e-10;           ///< stop at |∇F| ≤ rtol·|∇F₀| (MFEM -rtol)
   double growth = 1.2;           ///< line search: |∇F| grows by less than this (§2.2)
