@@ -48,6 +48,7 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   std::string target = "ideal", solver = "auto", quadrature = "lobatto";
   r.read("metric", o.metric);
   r.read("quadrature", quadrature, {"lobatto", "gauss"});
+  r.read("quadrature_degree", o.quadrature_degree, 0, 30);
   o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
   r.read("target", target, {"ideal", "input"});
   r.read("boundary", s.boundary, {"fixed", "slide"});
@@ -246,7 +247,8 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["target"] = options.target == TargetKind::Input ? "input" : "ideal";
   extra["boundary"] = settings.boundary;
   int degree = 0;
-  for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
+  for (const CellBlock& b : mesh.cells)
+    degree = std::max(degree, options.quadrature_degree > 0 ? options.quadrature_degree : metric_quadrature_degree(b.type, b.order));
   extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +
                         " products of degree 2p+1 on tensor cells, symmetric rules of degree 2p on simplices (max degree " +
                         std::to_string(degree) + ")";

@@ -24,6 +24,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   fo.metric = options.metric;
   fo.target = options.target;
   fo.quadrature = options.quadrature;
+  fo.quadrature_degree = options.quadrature_degree;
   fo.growth = options.growth;
   fo.det_floor = options.det_floor;
   fo.threads = optimize_threads(options.threads, fixed.size() - static_cast<std::size_t>(std::count(fixed.begin(), fixed.end(), 1)));

@@ -65,6 +65,7 @@ struct FitOptions {
   TargetKind target = TargetKind::Ideal;
   /// Points of the metric integral on tensor cells (degree metric_quadrature_degree).
   QuadratureFamily quadrature = QuadratureFamily::Gauss;
+  int quadrature_degree = 0;  ///< 0 = metric_quadrature_degree of each block
   /// w_σ at the start; 0 = penalty0 · (mean diagonal of the metric Hessian at the fitted
   /// DOFs) / 2, the penalty as stiff as the mesh around it (F_σ's diagonal is 2w|∇σ|²).
   double weight0 = 0.0;
