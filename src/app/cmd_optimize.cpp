@@ -255,12 +255,11 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["metric"] = options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric;
   extra["target"] = options.target == TargetKind::Input ? "input" : "ideal";
   extra["boundary"] = settings.boundary;
-  int degree = 0;
-  for (const CellBlock& b : mesh.cells)
-    degree = std::max(degree, options.quadrature_degree > 0 ? options.quadrature_degree : metric_quadrature_degree(b.type, b.order));
+  int degree = options.quadrature_degree > 0 ? options.quadrature_degree : d == 2 ? 4 * mesh.order() + 5 : 0;
+  if (degree == 0)
+    for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
   extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +
-                        " products of degree 2p+1 on tensor cells, symmetric rules of degree 2p on simplices (max degree " +
-                        std::to_string(degree) + ")";
+                        " products on tensor cells, symmetric rules on simplices, degree " + std::to_string(degree);
   extra["initial_inverted_elements"] = initial_inverted;
   extra["untangle_newton"] = untangle_newton;
   extra["slide_nodes"] = slide_nodes;

@@ -23,8 +23,9 @@ struct OptimizeOptions {
   /// curved cells (interior Gauss points alone let det A reach 0 at a corner). Simplices
   /// keep their symmetric rules (degree 2p).
   QuadratureFamily quadrature = QuadratureFamily::Lobatto;
-  /// 0 = 2p + 1 (tensor cells) / 2p (simplices); higher puts the μ barrier at more points,
-  /// which curved cells whose det A dips between the points need (docs/optimize.md).
+  /// 0: 4p + 5 in 2D (p the mesh's highest order), and in 3D 2p + 1 on tensor cells and 2p on
+  /// simplices. More points put the μ barrier where det A of curved cells dips between
+  /// them (docs/optimize.md).
   int quadrature_degree = 0;
   int max_newton = 50;           ///< Newton steps at most (MFEM -ni)
   double rtol = 1e-10;           ///< stop at |∇F| ≤ rtol·|∇F₀| (MFEM -rtol)
