@@ -255,7 +255,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["metric"] = options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric;
   extra["target"] = options.target == TargetKind::Input ? "input" : "ideal";
   extra["boundary"] = settings.boundary;
-  int degree = options.quadrature_degree > 0 ? options.quadrature_degree : d == 2 ? 4 * mesh.order() + 5 : 0;
+  int degree = r.quadrature_degree;
   if (degree == 0)
     for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
   extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +

@@ -15,15 +15,20 @@ namespace {
 
 using detail::format;
 
-// 0 (each block's metric_quadrature_degree) in 3D; 4p + 5 in 2D, 2p + 4 Lobatto points per
-// direction: the μ barrier then sees the dips of det A between the points that stalled the
-// line search at 2p + 1 on MFEM's curved 2D meshes (blade P4, jagged_mid22 P2; icf_mid2 P3
-// converges either way), at the cost of m² points, not m³.
+// More points than metric_quadrature_degree where the μ barrier must see the dips of det A
+// between them, which otherwise stalled the line search on MFEM's curved meshes: in 2D 4p + 5
+// (2p + 4 Lobatto points per direction; blade P4, jagged_mid22 P2), cheap at m² points; in 3D
+// 2p + 2 when a simplex block has p ≥ 3 (escher_rs3_o3, P3 tetrahedra: degree 8); otherwise
+// 0, each block's metric_quadrature_degree.
 int default_quadrature_degree(const Mesh& mesh) {
-  if (mesh.dim != 2) return 0;
   int order = 1;
-  for (const CellBlock& b : mesh.cells) order = std::max(order, b.order);
-  return 4 * order + 5;
+  bool cubic_simplices = false;
+  for (const CellBlock& b : mesh.cells) {
+    order = std::max(order, b.order);
+    cubic_simplices = cubic_simplices || (is_simplex(b.type) && b.order >= 3);
+  }
+  if (mesh.dim == 2) return 4 * order + 5;
+  return cubic_simplices ? 2 * order + 2 : 0;
 }
 
 // TMOP optimization is fitting without a level-set term: FitProblem with no fitted nodes is
@@ -54,11 +59,12 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   std::string why;
   if (!converged) {
     LinearSolverOptions lo;
-    // Auto: CHOLMOD up to 150k unknowns. Measured on fichq3_rs3_o2 (95k DOFs, P2 hexahedra,
+    // Auto: CHOLMOD up to 400k unknowns. Measured on fichq3_rs3_o2 (95k DOFs, P2 hexahedra,
     // ~375 Hessian entries per row; loaded 2-core machine): CHOLMOD 47 s and 1.0 GB for the
     // run, CG-AMG 625 s and 2.3 GB, 83% of it in the Galerkin products of the smoothed
-    // prolongator, whose A·P has the pattern of A² on high-order Hessians.
-    lo.kind = options.solver == LinearSolverKind::Auto && P.n_free() <= 150000 ? LinearSolverKind::Cholesky : options.solver;
+    // prolongator, whose A·P has the pattern of A² on high-order Hessians. escher_rs3_o3 (311k):
+    // CHOLMOD 131 s, 4.4 GB.
+    lo.kind = options.solver == LinearSolverKind::Auto && P.n_free() <= 400000 ? LinearSolverKind::Cholesky : options.solver;
     lo.block_size = d;
     lo.dim = d;
     lo.threads = fo.threads;
@@ -90,6 +96,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   result.mu_min = mu[0];
   result.mu_mean = mu[1];
   result.mu_max = mu[2];
+  result.quadrature_degree = fo.quadrature_degree;
   result.converged = converged;
   const double g = result.history.back().gradient_norm;
   result.message = converged ? format("optimized: F %.6g -> %.6g, |grad F| reduced by %.2g in %lld Newton steps", result.energy0,
