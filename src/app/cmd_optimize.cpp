@@ -45,8 +45,11 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   OptimizeSettings s;
   OptimizeOptions& o = s.options;
   OptionReader r(json, file);
-  std::string target = "ideal", solver = "auto";
+  std::string target = "ideal", solver = "auto", quadrature = "lobatto";
   r.read("metric", o.metric);
+  r.read("quadrature", quadrature, {"lobatto", "gauss"});
+  r.read("quadrature_degree", o.quadrature_degree, 0, 30);
+  o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
   r.read("target", target, {"ideal", "input"});
   r.read("boundary", s.boundary, {"fixed", "slide"});
   r.read("max_newton", o.max_newton, 1, 100000);
@@ -83,9 +86,10 @@ Eigen::MatrixXd untangled(const Mesh& mesh, const Topology& topology, const std:
   return x;
 }
 
-// The slide constraints of a case: `project` entries slide on their level set (the nodes
-// must already lie on it), `slide` entries on the plane of their group.
-std::vector<FitTerm> case_slides(const CaseFile& c, const Mesh& mesh, std::vector<std::uint8_t>& fixed) {
+// The slide constraints of a case: `project` entries slide on their level set (their nodes
+// are first moved onto it, e.g. the new nodes of an elevated mesh; that must leave `mesh`
+// valid), `slide` entries on the plane of their group.
+std::vector<FitTerm> case_slides(const CaseFile& c, Mesh& mesh, std::vector<std::uint8_t>& fixed) {
   const int d = mesh.dim;
   const double size = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
   LevelSetOptions lso;
@@ -97,11 +101,19 @@ std::vector<FitTerm> case_slides(const CaseFile& c, const Mesh& mesh, std::vecto
     const std::string where = c.file.string() + ": " + b.key_path;
     if (const auto* project = std::get_if<ProjectMotion>(&b.motion)) {
       LevelSetFunction sigma(project->target, d, lso);
-      for (std::int32_t node : nodes)
-        if (const double s = std::abs(sigma.value(mesh.x.col(node))); !(s <= 1e-6 * size))
+      double moved = 0.0;
+      for (std::int32_t node : nodes) {
+        const std::optional<Eigen::VectorXd> p = sigma.closest_point(mesh.x.col(node));
+        if (!p)
           throw InputError(where + ".project: node " +
                            std::to_string(mesh.node_tags.empty() ? node + 1 : mesh.node_tags[static_cast<std::size_t>(node)]) +
-                           " lies " + std::to_string(s) + " off the level set (optimize slides nodes on it; move them onto it with fit)");
+                           " has no closest point on the level set");
+        moved = std::max(moved, (*p - mesh.x.col(node)).norm());
+        mesh.x.col(node) = *p;
+      }
+      if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
+        throw InputError(where + ".project: moving the group's nodes onto the level set (by up to " + std::to_string(moved) +
+                         ") inverts " + std::to_string(bad) + " cells; fit them onto it first");
       slides.push_back({std::move(sigma), std::move(nodes)});
     } else if (std::holds_alternative<SlideMotion>(b.motion)) {
       // The group's plane: through its centroid, normal to its least-spread direction.
@@ -197,7 +209,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
     for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
   }
   if (c) {
-    std::vector<FitTerm> more = case_slides(*c, start_mesh, fixed);
+    std::vector<FitTerm> more = case_slides(*c, start_mesh, fixed);  // may move nodes onto level sets
     // A node that a case entry names follows that entry, not the automatic planes.
     std::vector<std::uint8_t> named(mesh.n_nodes(), 0);
     for (const BoundaryCondition& b : c->boundary)
@@ -243,9 +255,11 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["metric"] = options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric;
   extra["target"] = options.target == TargetKind::Input ? "input" : "ideal";
   extra["boundary"] = settings.boundary;
-  int degree = 0;
-  for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
-  extra["quadrature"] = "Gauss (tensor cells) / symmetric (simplices), degree 2p+1 / 2p, max " + std::to_string(degree);
+  int degree = r.quadrature_degree;
+  if (degree == 0)
+    for (const CellBlock& b : mesh.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
+  extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +
+                        " products on tensor cells, symmetric rules on simplices, degree " + std::to_string(degree);
   extra["initial_inverted_elements"] = initial_inverted;
   extra["untangle_newton"] = untangle_newton;
   extra["slide_nodes"] = slide_nodes;

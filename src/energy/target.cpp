@@ -33,7 +33,7 @@ MatT<d> ideal_jacobian(ElementType type, double volume) {
 
 template <int d>
 TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, TargetKind kind,
-                             int quadrature_degree) {
+                             int quadrature_degree, QuadratureFamily family) {
   MESHMORPH_CHECK(mesh.dim == d, "build_targets: the mesh dimension differs from d");
   MESHMORPH_CHECK(x_input.rows() == d && x_input.cols() == mesh.x.cols(),
                   "build_targets: x_input must be dim × n_nodes");
@@ -48,7 +48,7 @@ TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, T
     MESHMORPH_CHECK(topological_dim(block.type) == d, "build_targets: a cell block is not of dimension d");
     const int degree = quadrature_degree > 0 ? quadrature_degree : metric_quadrature_degree(block.type, block.order);
     BlockTargets<d>& bt = field.blocks[bi];
-    bt.table = &shape_table(block.type, block.order, degree);
+    bt.table = &shape_table(block.type, block.order, degree, family);
     const ShapeTable& table = *bt.table;
     const int n = table.n_nodes();
     const int Q = table.n_points();
@@ -114,7 +114,7 @@ TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, T
 
 template MatT<2> ideal_jacobian<2>(ElementType, double);
 template MatT<3> ideal_jacobian<3>(ElementType, double);
-template TargetField<2> build_targets<2>(const Mesh&, const Eigen::MatrixXd&, TargetKind, int);
-template TargetField<3> build_targets<3>(const Mesh&, const Eigen::MatrixXd&, TargetKind, int);
+template TargetField<2> build_targets<2>(const Mesh&, const Eigen::MatrixXd&, TargetKind, int, QuadratureFamily);
+template TargetField<3> build_targets<3>(const Mesh&, const Eigen::MatrixXd&, TargetKind, int, QuadratureFamily);
 
 }  // namespace meshmorph

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <tuple>
 
 #include <Eigen/Eigenvalues>
 
@@ -43,9 +44,52 @@ Rule1d gauss_jacobi(int n, int alpha) {
   return r;
 }
 
+// n-point Gauss–Lobatto rule on [0, 1]: ±1 and the zeros of P'_{n−1} on [−1, 1], found by
+// Newton on (1 − x²) P'_{n−1} = (n−1)(P_{n−2} − x P_{n−1}) from the Chebyshev–Lobatto points;
+// weights 2 / (n(n−1) P_{n−1}(x)²).
+Rule1d gauss_lobatto(int n) {
+  const int N = n - 1;
+  Rule1d r{Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  for (int i = 0; i < n; ++i) {
+    double x = -std::cos(M_PI * i / N), pn = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= N; ++k) {
+        const double p2 = ((2.0 * k - 1) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      pn = p1;
+      const double dx = (x * p1 - p0) / (n * p1);
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    r.x(i) = (x + 1) / 2;
+    r.w(i) = 1.0 / (N * n * pn * pn);  // 2/(n(n−1)P²) halved for [0, 1]
+  }
+  return r;
+}
+
 int points_for_degree(int degree) { return degree / 2 + 1; }  // Gauss: exact to 2n − 1
 
-QuadratureRule make_rule(ElementType type, int degree) {
+// The product of the n-point rule g on [0, 1] mapped to [−1, 1]^dim.
+QuadratureRule tensor_rule(QuadratureRule q, const Rule1d& g, int n, int dim) {
+  const int np = static_cast<int>(std::pow(n, dim));
+  q.points.resize(dim, np);
+  q.weights.resize(np);
+  for (int p = 0; p < np; ++p) {
+    int r = p;
+    double w = 1.0;
+    for (int k = 0; k < dim; ++k, r /= n) {
+      q.points(k, p) = 2 * g.x(r % n) - 1;
+      w *= 2 * g.w(r % n);
+    }
+    q.weights(p) = w;
+  }
+  return q;
+}
+
+QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) {
   QuadratureRule q{type, degree, {}, {}};
   const int n = points_for_degree(std::max(degree, 0));
   const int dim = topological_dim(type);
@@ -54,21 +98,11 @@ QuadratureRule make_rule(ElementType type, int degree) {
     q.weights = Eigen::VectorXd::Ones(1);
     return q;
   }
-  if (!is_simplex(type) || type == ElementType::Line) {  // Gauss–Legendre on [−1, 1]^d
-    const auto g = gauss_jacobi(n, 0);
-    const int np = static_cast<int>(std::pow(n, dim));
-    q.points.resize(dim, np);
-    q.weights.resize(np);
-    for (int p = 0; p < np; ++p) {
-      int r = p;
-      double w = 1.0;
-      for (int k = 0; k < dim; ++k, r /= n) {
-        q.points(k, p) = 2 * g.x(r % n) - 1;
-        w *= 2 * g.w(r % n);
-      }
-      q.weights(p) = w;
-    }
-    return q;
+  if (!is_simplex(type) || type == ElementType::Line) {  // Gauss–Legendre (–Lobatto) on [−1, 1]^d
+    const bool lobatto = family == QuadratureFamily::Lobatto;
+    const int m = lobatto ? std::max(2, (std::max(degree, 0) + 4) / 2) : n;  // Lobatto: exact to 2m − 3
+    const auto g = lobatto ? gauss_lobatto(m) : gauss_jacobi(m, 0);
+    return tensor_rule(q, g, m, dim);
   }
   // A symmetric rule where one exists (far fewer points: 24 instead of 64 at degree 6 on a
   // tetrahedron), else the Stroud conical product.
@@ -107,13 +141,14 @@ QuadratureRule make_rule(ElementType type, int degree) {
 
 }  // namespace
 
-const QuadratureRule& quadrature_rule(ElementType type, int degree) {
+const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family) {
   MESHMORPH_CHECK(degree >= 0 && degree <= 40, "quadrature degree out of range");
+  if (is_simplex(type) && type != ElementType::Line) family = QuadratureFamily::Gauss;  // one rule per simplex
   static std::mutex mutex;
-  static std::map<std::pair<ElementType, int>, std::unique_ptr<QuadratureRule>> cache;
+  static std::map<std::tuple<ElementType, int, QuadratureFamily>, std::unique_ptr<QuadratureRule>> cache;
   std::lock_guard lock(mutex);
-  auto& slot = cache[{type, degree}];
-  if (!slot) slot = std::make_unique<QuadratureRule>(make_rule(type, degree));
+  auto& slot = cache[{type, degree, family}];
+  if (!slot) slot = std::make_unique<QuadratureRule>(make_rule(type, degree, family));
   return *slot;
 }
 

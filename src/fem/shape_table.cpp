@@ -27,13 +27,13 @@ ShapeTable tabulate(ElementType type, int order, const Eigen::MatrixXd& points) 
   return t;
 }
 
-const ShapeTable& shape_table(ElementType type, int order, int degree) {
+const ShapeTable& shape_table(ElementType type, int order, int degree, QuadratureFamily family) {
   static std::mutex mutex;
-  static std::map<std::tuple<ElementType, int, int>, std::unique_ptr<ShapeTable>> cache;
+  static std::map<std::tuple<ElementType, int, int, QuadratureFamily>, std::unique_ptr<ShapeTable>> cache;
   std::lock_guard lock(mutex);
-  auto& slot = cache[{type, order, degree}];
+  auto& slot = cache[{type, order, degree, family}];
   if (!slot) {
-    const auto& rule = quadrature_rule(type, degree);
+    const auto& rule = quadrature_rule(type, degree, family);
     slot = std::make_unique<ShapeTable>(tabulate(type, order, rule.points));
     slot->weights = rule.weights;
   }

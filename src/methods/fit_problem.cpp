@@ -19,7 +19,7 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
                           const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
                           const std::vector<FitTerm>& slides)
     : mesh_(&mesh), terms_(&terms), options_(options), x_(x) {
-  targets_ = build_targets<d>(mesh, x, options.target);
+  targets_ = build_targets<d>(mesh, x, options.target, options.quadrature_degree, options.quadrature);
   dofs_ = DofMap::from_mask(d, fixed);
   slide_sigma_.reserve(slides.size());  // no reallocation: SlideNode points into it
   std::vector<int> slot(mesh.n_nodes(), -1);

@@ -3,7 +3,8 @@
 # check_optimize.sh MESHMORPH EXAMPLES DATA WORK: `optimize` end to end — a bare P2 mesh is
 # optimized with its boundary fixed and written next to itself; the sphere-in-a-box P2 mesh
 # with its sphere sliding keeps the sphere's nodes on it to 1e-10 and ends with a lower energy
-# and a better worst quality (max μ) than with the sphere fixed; a bare tangled mesh is
+# and a better worst quality (max μ) than with the sphere fixed; the linear mesh elevated to
+# P3 has its sphere nodes moved onto the sphere and kept there to 1e-10; a bare tangled mesh is
 # untangled, then optimized; a run out of Newton steps exits 1 without a mesh; bad input
 # exits 2 and writes nothing.
 set -u
@@ -56,6 +57,21 @@ less "$(field "$work/slide.json" mu_max)" "$(field "$work/fixed.json" mu_max)" |
   fail "slide: max mu $(field "$work/slide.json" mu_max) not below fixed $(field "$work/fixed.json" mu_max)"
 less "$(field "$work/slide.json" energy_final)" "$(field "$work/fixed.json" energy_final)" || fail "slide: energy not below fixed"
 
+# P3 from the linear mesh: the elevated sphere nodes are moved onto the sphere, then slide on it.
+printf '{"mesh": "%s", "order": 3, "boundary": [{"group": "box", "fixed": true}, {"group": "sphere", "project": %s}], "output": "p3.vtu", "report": "p3.json"}\n' \
+  "$(realpath "$examples/meshes/sphere_in_box.msh")" "$sphere" > "$work/p3.case.json"
+# The same with the sphere fixed after the projection ("fixed" wins over "project").
+printf '{"mesh": "%s", "order": 3, "boundary": [{"group": "box", "fixed": true}, {"group": "sphere", "project": %s}, {"group": "sphere", "fixed": true}], "output": "p3fixed.vtu", "report": "p3fixed.json"}\n' \
+  "$(realpath "$examples/meshes/sphere_in_box.msh")" "$sphere" > "$work/p3fixed.case.json"
+expect p3 0
+expect p3fixed 0
+[ "$(field "$work/p3.json" order)" = 3 ] || fail "p3: order"
+less "$(field "$work/p3.json" boundary_error_max)" 1e-10 || fail "p3: nodes left the sphere"
+[ "$(field "$work/p3.json" inverted_elements)" = 0 ] || fail "p3: inverted elements"
+[ "$(field "$work/p3fixed.json" slide_nodes)" = 0 ] || fail "p3fixed: sliding nodes"
+less "$(field "$work/p3.json" mu_max)" "$(field "$work/p3fixed.json" mu_max)" ||
+  fail "p3: max mu $(field "$work/p3.json" mu_max) not below fixed $(field "$work/p3fixed.json" mu_max)"
+
 # A bare tangled mesh: untangled with its boundary fixed, then optimized.
 cp "$data/tangled_quads.msh" "$work/"
 expect "$work/tangled_quads.msh" 0 "untangled first" --report "$work/tangled.json"
@@ -74,8 +90,8 @@ make_case unknown_option '[]' '{"delta0": 1}'
 expect unknown_option 2 "options.delta0"
 make_case wrong_metric '[]' '{"metric": "mu2"}'
 expect wrong_metric 2 "options.metric"
-make_case off_surface '[{"group": "sphere", "project": {"sphere": {"center": [0, 0, 0], "radius": 0.5}}}]'
-expect off_surface 2 "boundary\[0\].project: node"
+make_case off_surface '[{"group": "sphere", "project": {"sphere": {"center": [0, 0, 0], "radius": 0.9}}}]'
+expect off_surface 2 "boundary\[0\].project: moving the group's nodes onto the level set"
 make_case bad_motion '[{"group": "sphere", "translate": [1, 0, 0]}]'
 expect bad_motion 2 "boundary\[0\]"
 for name in unknown_option wrong_metric off_surface bad_motion; do

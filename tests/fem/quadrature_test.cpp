@@ -50,6 +50,34 @@ TEST(QuadratureRule, ExactForEveryMonomialUpToItsDegree) {
   }
 }
 
+// Gauss–Lobatto products: exact to their degree in each variable, the corners of the cell
+// among the points, positive weights, and simplices unchanged.
+TEST(QuadratureRule, LobattoProductsAreExactAndHoldTheCorners) {
+  for (auto t : {ElementType::Line, ElementType::Quadrilateral, ElementType::Hexahedron}) {
+    const int dim = topological_dim(t);
+    for (int degree = 0; degree <= 11; ++degree) {
+      const auto& rule = quadrature_rule(t, degree, QuadratureFamily::Lobatto);
+      const int m = std::max(2, (degree + 4) / 2);
+      EXPECT_EQ(rule.n_points(), static_cast<int>(std::pow(m, dim)));
+      EXPECT_GT(rule.weights.minCoeff(), 0.0);
+      EXPECT_GT((rule.points.cwiseAbs().colwise().minCoeff().array() == 1.0).count(), 0);  // a corner
+      for (int a = 0; a <= degree; ++a)
+        for (int b = 0; b <= (dim > 1 ? degree : 0); ++b)
+          for (int c = 0; c <= (dim > 2 ? degree : 0); ++c) {
+            double sum = 0;
+            for (int q = 0; q < rule.n_points(); ++q) {
+              double v = std::pow(rule.points(0, q), a);
+              if (dim > 1) v *= std::pow(rule.points(1, q), b);
+              if (dim > 2) v *= std::pow(rule.points(2, q), c);
+              sum += rule.weights(q) * v;
+            }
+            EXPECT_NEAR(sum, exact_monomial(t, a, b, c), 1e-13) << name_of(t) << " degree " << degree;
+          }
+    }
+  }
+  EXPECT_EQ(&quadrature_rule(ElementType::Tetrahedron, 4, QuadratureFamily::Lobatto), &quadrature_rule(ElementType::Tetrahedron, 4));
+}
+
 TEST(QuadratureRule, PointsInsideAndWeightsPositive) {
   for (auto t : {ElementType::Triangle, ElementType::Tetrahedron, ElementType::Quadrilateral, ElementType::Hexahedron})
     for (int degree = 1; degree <= 10; ++degree) {

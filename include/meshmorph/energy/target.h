@@ -58,7 +58,7 @@ MatT<d> ideal_jacobian(ElementType type, double volume);
 
 /// Builds the targets of `mesh` (dim must equal d) from the coordinates `x_input`
 /// (d × n_nodes; usually mesh.x). Each block uses shape_table(type, order,
-/// metric_quadrature_degree(type, order)), or degree `quadrature_degree` when it is > 0.
+/// metric_quadrature_degree(type, order), family), or degree `quadrature_degree` when it is > 0.
 ///
 /// Input: throws InputError naming the block and cell when det W ≤ 0 at a quadrature point
 /// (an inverted input element has no meaningful input target).
@@ -66,6 +66,6 @@ MatT<d> ideal_jacobian(ElementType type, double volume);
 /// the others (throws InputError if every cell is degenerate).
 template <int d>
 TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, TargetKind kind,
-                             int quadrature_degree = 0);
+                             int quadrature_degree = 0, QuadratureFamily family = QuadratureFamily::Gauss);
 
 }  // namespace meshmorph

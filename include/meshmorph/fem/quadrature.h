@@ -19,11 +19,20 @@ struct QuadratureRule {
   int n_points() const { return static_cast<int>(weights.size()); }
 };
 
-/// Shared rule of at least `degree`: Gauss–Legendre products on tensor cells; on simplices
+/// The 1D rule of the products on tensor cells.
+enum class QuadratureFamily {
+  Gauss,    ///< Gauss–Legendre: n points exact to degree 2n − 1, all interior
+  /// Gauss–Lobatto: n points exact to degree 2n − 3, the two end points included, so the
+  /// products sample the corners, edges and faces of the cell (MFEM's -qt 1).
+  Lobatto,
+};
+
+/// Shared rule of at least `degree`: Gauss–Legendre products on tensor cells (Gauss–Lobatto
+/// products for `Lobatto`, which does not change the rules of simplices); on simplices
 /// fully symmetric rules with positive weights and interior points for degrees 2–8 where
 /// one is tabulated (src/fem/detail/simplex_rules.inc), otherwise collapsed Gauss–Jacobi
 /// (Stroud conical) products; one point (the centroid) for degree ≤ 1.
-const QuadratureRule& quadrature_rule(ElementType type, int degree);
+const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family = QuadratureFamily::Gauss);
 
 /// Degree used by default for mesh-quality integrals on an element of `order`: 1 for
 /// linear simplices (A is constant: one point is exact), 2p for curved simplices and

@@ -25,8 +25,8 @@ struct ShapeTable {
   auto grad(int q) const { return dN.middleCols(q * dim, dim); }
 };
 
-/// Shared table of (type, order) at the points of quadrature_rule(type, degree).
-const ShapeTable& shape_table(ElementType type, int order, int degree);
+/// Shared table of (type, order) at the points of quadrature_rule(type, degree, family).
+const ShapeTable& shape_table(ElementType type, int order, int degree, QuadratureFamily family = QuadratureFamily::Gauss);
 /// Table of (type, order) at arbitrary reference points (not cached).
 ShapeTable tabulate(ElementType type, int order, const Eigen::MatrixXd& points);
 

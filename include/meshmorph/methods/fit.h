@@ -63,6 +63,9 @@ std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topo
 struct FitOptions {
   std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
   TargetKind target = TargetKind::Ideal;
+  /// Points of the metric integral on tensor cells (degree metric_quadrature_degree).
+  QuadratureFamily quadrature = QuadratureFamily::Gauss;
+  int quadrature_degree = 0;  ///< 0 = metric_quadrature_degree of each block
   /// w_σ at the start; 0 = penalty0 · (mean diagonal of the metric Hessian at the fitted
   /// DOFs) / 2, the penalty as stiff as the mesh around it (F_σ's diagonal is 2w|∇σ|²).
   double weight0 = 0.0;

@@ -18,6 +18,15 @@ namespace meshmorph {
 struct OptimizeOptions {
   std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
   TargetKind target = TargetKind::Ideal;
+  /// Gauss–Lobatto points on tensor cells (MFEM's -qt 1), degree 2p + 1 (p + 2 points per
+  /// direction): they include the corners and edges, where the barrier of μ must act on
+  /// curved cells (interior Gauss points alone let det A reach 0 at a corner). Simplices
+  /// keep their symmetric rules (degree 2p).
+  QuadratureFamily quadrature = QuadratureFamily::Lobatto;
+  /// 0: 4p + 5 in 2D (p the mesh's highest order); in 3D 2p + 2 with simplices of order ≥ 3,
+  /// else 2p + 1 on tensor cells and 2p on simplices. More points put the μ barrier where det
+  /// A of curved cells dips between them (docs/optimize.md).
+  int quadrature_degree = 0;
   int max_newton = 50;           ///< Newton steps at most (MFEM -ni)
   double rtol = 1e-10;           ///< stop at |∇F| ≤ rtol·|∇F₀| (MFEM -rtol)
   double growth = 1.2;           ///< line search: |∇F| grows by less than this (§2.2)
@@ -50,6 +59,7 @@ struct OptimizeResult {
   double energy0 = 0.0, energy = 0.0;  ///< F before and after
   double min_det0 = 0.0, min_det = 0.0;
   double mu_min = 0.0, mu_mean = 0.0, mu_max = 0.0;  ///< over the quadrature points, after
+  int quadrature_degree = 0;  ///< the degree used (0: each block's metric_quadrature_degree)
   std::vector<OptimizeIteration> history;
 };
 
