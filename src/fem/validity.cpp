@@ -9,6 +9,7 @@
 
 #include <Eigen/LU>
 
+#include "meshmorph/error.h"
 #include "meshmorph/fem/jacobian.h"
 
 namespace meshmorph {
@@ -56,11 +57,26 @@ namespace {
 // Fixed-size d×d Jacobians: a closed-form determinant instead of a dynamic LU per sample
 // (7% of a large optimize run was that LU).
 template <int d>
-double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X) {
+double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>* skip) {
   double m = std::numeric_limits<double>::infinity();
   for (int q = 0; q < t.n_points(); ++q) {
+    if (skip && (*skip)[static_cast<std::size_t>(q)]) continue;
     const Eigen::Matrix<double, d, d> A = X * t.grad(q);
     const double det = A.determinant();
+    if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
+    m = std::min(m, det);
+  }
+  return m;
+}
+
+double min_det_samples(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>* skip) {
+  const auto& t = validity_samples(type, order);
+  if (X.rows() == 2 && t.dim == 2) return min_det_fixed<2>(t, X, skip);
+  if (X.rows() == 3 && t.dim == 3) return min_det_fixed<3>(t, X, skip);
+  double m = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < t.n_points(); ++q) {
+    if (skip && (*skip)[static_cast<std::size_t>(q)]) continue;
+    const double det = jacobian(X, t, q).determinant();
     if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
     m = std::min(m, det);
   }
@@ -70,16 +86,13 @@ double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X) {
 }  // namespace
 
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X) {
-  const auto& t = validity_samples(type, order);
-  if (X.rows() == 2 && t.dim == 2) return min_det_fixed<2>(t, X);
-  if (X.rows() == 3 && t.dim == 3) return min_det_fixed<3>(t, X);
-  double m = std::numeric_limits<double>::infinity();
-  for (int q = 0; q < t.n_points(); ++q) {
-    const double det = jacobian(X, t, q).determinant();
-    if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
-    m = std::min(m, det);
-  }
-  return m;
+  return min_det_samples(type, order, X, nullptr);
+}
+
+double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>& skip) {
+  MESHMORPH_CHECK(skip.size() == static_cast<std::size_t>(validity_samples(type, order).n_points()),
+                  "min_jacobian_det: one skip flag per validity sample");
+  return min_det_samples(type, order, X, &skip);
 }
 
 std::size_t count_invalid_cells(const Mesh& mesh) {

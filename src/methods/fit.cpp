@@ -88,6 +88,9 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   x = P.state();
   result.fit_error = P.fit_error();
   result.min_det = P.min_det();
+  const auto [inverted, flat] = P.invalid_cells(x);
+  result.inverted = inverted;
+  result.flat = flat;
   result.converged = result.fit_error <= options.eps_sigma;
   if (result.converged) result.message = "fitted: max |sigma| " + format("%.3g", result.fit_error);
   else if (result.message.empty())

@@ -2,13 +2,17 @@
 // Choosing the fitted nodes of paper 003 §3.2: material indicators (eq. 10), their
 // two-pass correction (eq. 12), conforming splits, and the interface's nodes.
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 
 #include <Eigen/LU>
 
 #include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/shape_table.h"
 #include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
+#include "meshmorph/mesh/topology.h"
 #include "meshmorph/methods/fit.h"
 
 namespace meshmorph {
@@ -20,6 +24,13 @@ CellBlock empty_like(const CellBlock& block) {
   b.type = block.type;
   b.order = block.order;
   return b;
+}
+
+// Whether reference point p lies on the segment [a, b] (a point when a = b).
+bool on_segment(const Eigen::VectorXd& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd e = b - a;
+  const double t = e.squaredNorm() > 0.0 ? std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - a - t * e).norm() < 1e-9;
 }
 
 }  // namespace
@@ -251,6 +262,41 @@ std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topo
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
+}
+
+FlatEdges flat_edges(const Mesh& mesh, const std::vector<std::uint8_t>& fitted) {
+  FlatEdges out;
+  for (const CellBlock& block : mesh.cells) {
+    std::vector<std::int32_t>& mask_of = out.mask_of_cell.emplace_back(block.n_cells(), -1);
+    const ReferenceElement& ref = reference_element(block.type, block.order);
+    const std::span<const std::vector<int>> corners = corner_facets(block.type);
+    const ShapeTable& samples = validity_samples(block.type, block.order);
+    const int n = block.n_nodes_per_cell();
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      std::vector<int> on;  // the facets whose nodes are all fitted
+      for (std::size_t f = 0; f < ref.facet_nodes.size(); ++f)
+        if (std::all_of(ref.facet_nodes[f].begin(), ref.facet_nodes[f].end(),
+                        [&](int a) { return fitted[static_cast<std::size_t>(block.nodes[c * n + a])] != 0; }))
+          on.push_back(static_cast<int>(f));
+      std::vector<std::uint8_t> mask;
+      for (std::size_t i = 0; i < on.size(); ++i)
+        for (std::size_t j = i + 1; j < on.size(); ++j) {
+          std::vector<int> shared;  // the corners of the edge (3D) or the corner (2D) between them
+          for (int a : corners[static_cast<std::size_t>(on[i])])
+            if (std::ranges::count(corners[static_cast<std::size_t>(on[j])], a)) shared.push_back(a);
+          if (static_cast<int>(shared.size()) != mesh.dim - 1) continue;
+          mask.resize(static_cast<std::size_t>(samples.n_points()), 0);
+          const Eigen::VectorXd a = ref.nodes.col(shared.front()), b = ref.nodes.col(shared.back());
+          for (int q = 0; q < samples.n_points(); ++q)
+            if (on_segment(samples.points.col(q), a, b)) mask[static_cast<std::size_t>(q)] = 1;
+        }
+      if (mask.empty()) continue;
+      mask_of[c] = static_cast<std::int32_t>(out.masks.size());
+      out.masks.push_back(std::move(mask));
+      ++out.cells;
+    }
+  }
+  return out;
 }
 
 }  // namespace meshmorph

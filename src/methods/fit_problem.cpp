@@ -42,6 +42,12 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
   MESHMORPH_CHECK(project_slides(x_), "FitProblem: a slide node cannot be projected onto its surface");
   assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_);
   metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
+  if (options.flat_edges) {
+    std::vector<std::uint8_t> fitted(mesh.n_nodes(), 0);
+    for (const FitTerm& t : terms)
+      for (std::int32_t s : t.nodes) fitted[static_cast<std::size_t>(s)] = 1;
+    flat_ = flat_edges(mesh, fitted);
+  }
   min_det0_ = min_det(x);
 }
 
@@ -54,19 +60,36 @@ double FitProblem<d>::fit_error(const Eigen::MatrixXd& x) const {
 }
 
 template <int d>
+double FitProblem<d>::cell_min_det(std::size_t b, std::size_t c, const Eigen::MatrixXd& x, bool all) const {
+  const CellBlock& block = mesh_->cells[b];
+  const int n = block.n_nodes_per_cell();
+  Eigen::MatrixXd X(d, n);
+  for (int a = 0; a < n; ++a) X.col(a) = x.col(block.nodes[c * n + a]);
+  const std::int32_t k = flat_.mask_of_cell.empty() || all ? -1 : flat_.mask_of_cell[b][c];
+  return k < 0 ? min_jacobian_det(block.type, block.order, X)
+               : min_jacobian_det(block.type, block.order, X, flat_.masks[static_cast<std::size_t>(k)]);
+}
+
+template <int d>
 double FitProblem<d>::min_det(const Eigen::MatrixXd& x) const {
   double m = std::numeric_limits<double>::infinity();
-  for (const CellBlock& block : mesh_->cells) {
-    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
-    const int n = block.n_nodes_per_cell();
+  for (std::size_t b = 0; b < mesh_->cells.size(); ++b) {
+    const auto n_cells = static_cast<std::ptrdiff_t>(mesh_->cells[b].n_cells());
 #pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) reduction(min : m) schedule(static)
-    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
-      Eigen::MatrixXd X(d, n);
-      for (int a = 0; a < n; ++a) X.col(a) = x.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
-      m = std::min(m, min_jacobian_det(block.type, block.order, X));
-    }
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) m = std::min(m, cell_min_det(b, static_cast<std::size_t>(c), x, false));
   }
   return m;
+}
+
+template <int d>
+std::array<std::size_t, 2> FitProblem<d>::invalid_cells(const Eigen::MatrixXd& x) const {
+  std::size_t inverted = 0, flat = 0;
+  for (std::size_t b = 0; b < mesh_->cells.size(); ++b)
+    for (std::size_t c = 0; c < mesh_->cells[b].n_cells(); ++c) {
+      if (!(cell_min_det(b, c, x, false) > 0.0)) ++inverted;
+      else if (!(cell_min_det(b, c, x, true) > 0.0)) ++flat;
+    }
+  return {inverted, flat};
 }
 
 template <int d>

@@ -5,7 +5,7 @@
 # level set with no zero crossing in the mesh, a background field or distance box that does not
 # cover it, an unknown key of a distance level set and a metric of the other dimension exit 2
 # and write nothing; the circle through a distance field fits as well; a run out of Newton
-# steps exits 1 and writes no mesh.
+# steps exits 1 and writes no mesh; without splits the fit needs flat_edges.
 set -u
 mm=$1 examples=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -38,6 +38,18 @@ make_case distance '{"distance": {"of": '"$circle"', "lower": [0, 0], "upper": [
 expect distance 0
 [ "$(field "$work/distance.json" valid)" = true ] || fail "distance: report not valid"
 awk -v e="$(field "$work/distance.json" fit_error_max)" 'BEGIN { exit !(e <= 1e-8) }' || fail "distance: fit_error_max"
+
+# Without the conforming splits, the cells with two interface facets flatten at their shared
+# corner: the usual validity test stops the fit short; flat_edges lets it reach eps_sigma, and
+# the report counts the cells that are flat at that corner (docs/fit.md).
+make_case nosplit "$circle" '{"eps_sigma": 1e-8, "split": false}'
+expect nosplit 1 "above eps_sigma"
+[ "$(field "$work/nosplit.json" cells_with_two_interface_facets)" -gt 0 ] || fail "nosplit: no cell with two interface facets"
+make_case flat "$circle" '{"eps_sigma": 1e-8, "split": false, "flat_edges": true}'
+expect flat 0
+[ "$(field "$work/flat.json" valid)" = true ] || fail "flat: report not valid"
+awk -v e="$(field "$work/flat.json" fit_error_max)" 'BEGIN { exit !(e <= 1e-8) }' || fail "flat: fit_error_max"
+[ "$(field "$work/flat.json" flat_edge_cells)" -gt 0 ] || fail "flat: no flat cell reported"
 
 make_case budget "$circle" '{"max_newton": 1}'
 expect budget 1 "above eps_sigma"

@@ -54,6 +54,21 @@ TEST(Validity, CatchesAFoldBetweenTheCornersOfACurvedTriangle) {
   EXPECT_LE(min_jacobian_det(ElementType::Triangle, 2, X), 0.0);
 }
 
+// A quadrilateral whose corner 3 lies on the diagonal through corners 0 and 2: det A = 0
+// there and > 0 at every other sample; skipping that corner's samples leaves it positive.
+TEST(Validity, SkippedSamplesAreLeftOut) {
+  Eigen::MatrixXd X(2, 4);
+  X << 0, 1, 1, 0.5,  //
+      0, 0, 1, 0.5;
+  EXPECT_NEAR(min_jacobian_det(ElementType::Quadrilateral, 1, X), 0.0, 1e-15);
+  const ShapeTable& t = validity_samples(ElementType::Quadrilateral, 1);
+  std::vector<std::uint8_t> skip(static_cast<std::size_t>(t.n_points()), 0);
+  for (int q = 0; q < t.n_points(); ++q) skip[static_cast<std::size_t>(q)] = (t.points.col(q) - Eigen::Vector2d(-1, 1)).norm() < 1e-12;
+  EXPECT_GT(min_jacobian_det(ElementType::Quadrilateral, 1, X, skip), 0.01);
+  skip.pop_back();
+  EXPECT_THROW(min_jacobian_det(ElementType::Quadrilateral, 1, X, skip), std::logic_error);
+}
+
 TEST(Validity, NanCoordinatesAreInvalid) {
   auto mesh = structured_mesh(ElementType::Tetrahedron, 1, 1);
   mesh.x(0, 0) = std::numeric_limits<double>::quiet_NaN();

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/elevate.h"
+#include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
@@ -117,6 +119,68 @@ TEST(Fit, FitsACircleInterface) {
     EXPECT_EQ(count_invalid_cells(moved), 0u);
     for (std::int32_t s : terms[0].nodes) EXPECT_LE(std::abs(sigma.value(x.col(s))), 1e-9);
   }
+}
+
+// Flat edges: a cell's samples on the edge (corner in 2D) where two of its fitted facets
+// meet, and no others; none between opposite facets or on a single fitted facet. (Linear
+// tetrahedra are left out: there a facet across the cube, with its vertices on the two
+// planes, counts as fitted too.)
+TEST(FitInterface, FlatEdgesAreTheEdgesBetweenTwoFittedFacets) {
+  for (ElementType type : {ElementType::Quadrilateral, ElementType::Hexahedron, ElementType::Tetrahedron})
+    for (int order = is_simplex(type) ? 2 : 1; order <= 3; ++order) {
+      SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+      const Mesh mesh = structured_mesh(type, order, 1);
+      const int d = mesh.dim;
+      const auto on = [&](int axis, double value) {  // the nodes on the plane x_axis = value
+        std::vector<std::uint8_t> f(mesh.n_nodes(), 0);
+        for (Eigen::Index j = 0; j < mesh.x.cols(); ++j) f[static_cast<std::size_t>(j)] = std::abs(mesh.x(axis, j) - value) < 1e-12;
+        return f;
+      };
+      const auto join = [](std::vector<std::uint8_t> a, const std::vector<std::uint8_t>& b) {
+        for (std::size_t j = 0; j < a.size(); ++j) a[j] |= b[j];
+        return a;
+      };
+      // The planes x = 1 and x_{d−1} = 0: the structured simplices have facets on both.
+      const std::vector<std::uint8_t> bottom = on(d - 1, 0.0), both = join(on(0, 1.0), bottom);
+      EXPECT_EQ(flat_edges(mesh, bottom).cells, 0u);
+      if (!is_simplex(type) && order > 1) {  // at order 1 the side facets' nodes are all on the two
+        EXPECT_EQ(flat_edges(mesh, join(bottom, on(d - 1, 1.0))).cells, 0u);
+      }
+
+      const FlatEdges flat = flat_edges(mesh, both);
+      // Expected: the samples whose image lies on x = 1 and x_{d−1} = 0, in the cells that
+      // have a facet on each of the two planes.
+      std::size_t cells = 0;
+      for (std::size_t b = 0; b < mesh.cells.size(); ++b) {
+        const CellBlock& block = mesh.cells[b];
+        const ShapeTable& samples = validity_samples(block.type, block.order);
+        for (std::size_t c = 0; c < block.n_cells(); ++c) {
+          const Eigen::MatrixXd image = cell_coordinates(mesh, block, c) * samples.N;
+          const std::int32_t k = flat.mask_of_cell[b][c];
+          std::size_t expected = 0, flagged = 0;
+          for (int q = 0; q < samples.n_points(); ++q) {
+            const bool edge = std::abs(image(0, q) - 1) < 1e-9 && std::abs(image(d - 1, q)) < 1e-9;
+            const bool flag = k >= 0 && flat.masks[static_cast<std::size_t>(k)][static_cast<std::size_t>(q)];
+            expected += edge;
+            flagged += flag;
+            if (k >= 0) {
+              EXPECT_EQ(flag, edge) << "cell " << c << " sample " << q;
+            }
+          }
+          if (k >= 0) {
+            ++cells;
+            EXPECT_GT(flagged, 0u);
+          } else if (expected > 0) {  // a cell with an edge on the line but a facet on one plane at most
+            std::size_t facets = 0;
+            for (const std::vector<int>& f : reference_element(block.type, block.order).facet_nodes)
+              facets += std::all_of(f.begin(), f.end(), [&](int a) { return both[static_cast<std::size_t>(block.nodes[c * block.n_nodes_per_cell() + a])] != 0; });
+            EXPECT_LT(facets, 2u) << "cell " << c;
+          }
+        }
+      }
+      EXPECT_EQ(flat.cells, cells);
+      EXPECT_GT(cells, 0u);
+    }
 }
 
 // Nodes already on the level set (the line x = 0.5 through a column of nodes) and a mesh

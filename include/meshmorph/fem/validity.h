@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -18,6 +20,8 @@ const ShapeTable& validity_samples(ElementType type, int order);
 /// min over validity_samples of det A for one element (X: dim × n nodal coordinates).
 /// An element is valid when this is > 0 (DESIGN §2).
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X);
+/// The same over the samples whose flag in `skip` (one per validity sample) is 0.
+double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>& skip);
 
 /// Number of cells of `mesh` whose min_jacobian_det is ≤ 0 (or not finite).
 std::size_t count_invalid_cells(const Mesh& mesh);

@@ -59,6 +59,20 @@ std::vector<std::int32_t> cut_nodes(const Mesh& mesh, const std::vector<std::vec
 /// The nodes of every order on the facets between cells of different indicators, sorted.
 std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta);
 
+/// The validity samples that lie on a flat edge: in 3D an edge shared by two facets of one
+/// cell whose nodes are all fitted, in 2D a corner shared by two such facets. Both facets
+/// end on the level set's smooth surface, so the cell's angle there tends to 180° and det A
+/// to 0 (every convex and concave edge of a hexahedral staircase has one such cell: paper
+/// 003 §3.3, §4.1).
+struct FlatEdges {
+  /// Per cell block, per cell: the index of its mask in `masks`, −1 for a cell without.
+  std::vector<std::vector<std::int32_t>> mask_of_cell;
+  /// One flag per validity sample of the cell's (type, order): 1 on a flat edge.
+  std::vector<std::vector<std::uint8_t>> masks;
+  std::size_t cells = 0;  ///< cells with a flat edge
+};
+FlatEdges flat_edges(const Mesh& mesh, const std::vector<std::uint8_t>& fitted);
+
 /// Parameters of fitting (paper 003 Algorithm 1); defaults are the paper's.
 struct FitOptions {
   std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
@@ -78,6 +92,9 @@ struct FitOptions {
   int max_newton = 200;          ///< N_opt
   double growth = 1.2;           ///< line search: |∇F| and max |σ| grow by less than this (eq. 14)
   double det_floor = 1e-3;       ///< eq. 15: min det A stays above det_floor · its initial value
+  /// Validity (line search and result) skips the samples on flat edges (FlatEdges): det A
+  /// may reach 0 there, as MFEM's TMOP allows by checking its quadrature points only.
+  bool flat_edges = false;
   LinearSolverKind solver = LinearSolverKind::Auto;
   int threads = 0;
 };
@@ -97,6 +114,9 @@ struct FitResult {
   long long newton = 0, linear = 0, weight_updates = 0;
   double fit_error0 = 0.0, fit_error = 0.0;  ///< max |σ| at S, before and after
   double min_det0 = 0.0, min_det = 0.0;      ///< min det A, before and after
+  /// Cells with min det A ≤ 0 over their validity samples, except the flat-edge samples
+  /// when options.flat_edges; and the cells whose det A ≤ 0 only there.
+  std::size_t inverted = 0, flat = 0;
   std::vector<FitIteration> history;
 };
 

@@ -41,8 +41,12 @@ class FitProblem final : public NewtonProblem {
   /// max |σ(x_s)| over every term's nodes at x.
   double fit_error(const Eigen::MatrixXd& x) const;
   double fit_error() const { return fit_error(x_); }
-  /// min det A over the validity samples of every cell at x.
+  /// min det A over the validity samples of every cell at x (without the flat-edge samples
+  /// when options.flat_edges).
   double min_det(const Eigen::MatrixXd& x) const;
+  /// Cells at x whose det A ≤ 0 at a validity sample, except on flat edges when
+  /// options.flat_edges; and the cells whose det A ≤ 0 only on their flat edges.
+  std::array<std::size_t, 2> invalid_cells(const Eigen::MatrixXd& x) const;
   double min_det() const { return min_det(x_); }
   /// Mean diagonal of the projected metric Hessian at the free DOFs of the fitted nodes.
   double metric_stiffness();
@@ -82,9 +86,13 @@ class FitProblem final : public NewtonProblem {
   void constrain_hessian(HessianMode mode, Assembly& out);
   bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
 
+  // min det A of one cell at x; `all` includes its flat-edge samples.
+  double cell_min_det(std::size_t block, std::size_t cell, const Eigen::MatrixXd& x, bool all) const;
+
   const Mesh* mesh_;
   const std::vector<FitTerm>* terms_;
   FitOptions options_;
+  FlatEdges flat_;  // empty unless options.flat_edges
   TargetField<d> targets_;
   DofMap dofs_;
   std::unique_ptr<EnergyAssembler<d>> assembler_;
