@@ -2,6 +2,7 @@
 // Choosing the fitted nodes of paper 003 §3.2: material indicators (eq. 10), their
 // two-pass correction (eq. 12), conforming splits, and the interface's nodes.
 #include <algorithm>
+#include <array>
 #include <span>
 #include <stdexcept>
 
@@ -271,25 +272,51 @@ FlatEdges flat_edges(const Mesh& mesh, const std::vector<std::uint8_t>& fitted) 
     const ReferenceElement& ref = reference_element(block.type, block.order);
     const std::span<const std::vector<int>> corners = corner_facets(block.type);
     const ShapeTable& samples = validity_samples(block.type, block.order);
-    const int n = block.n_nodes_per_cell();
+    const int n = block.n_nodes_per_cell(), n_corners = n_corners_of(block.type);
+    // The cell's edges in 3D (two corners on two common facets) and the local nodes on each.
+    std::vector<std::array<int, 2>> edges;
+    std::vector<std::vector<int>> edge_nodes;
+    for (int a = 0; a < n_corners && mesh.dim == 3; ++a)
+      for (int b = a + 1; b < n_corners; ++b) {
+        int common = 0;
+        for (const std::vector<int>& f : corners) common += std::ranges::count(f, a) && std::ranges::count(f, b);
+        if (common != 2) continue;
+        edges.push_back({a, b});
+        std::vector<int>& on = edge_nodes.emplace_back();
+        for (int k = 0; k < ref.n_nodes(); ++k)
+          if (on_segment(ref.nodes.col(k), ref.nodes.col(a), ref.nodes.col(b))) on.push_back(k);
+      }
     for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const auto all_fitted = [&](const std::vector<int>& local) {
+        return std::ranges::all_of(local, [&](int a) { return fitted[static_cast<std::size_t>(block.nodes[c * n + a])] != 0; });
+      };
+      std::vector<std::uint8_t> mask;
+      const auto flag = [&](int a, int b) {  // the samples on the segment between corners a and b
+        mask.resize(static_cast<std::size_t>(samples.n_points()), 0);
+        for (int q = 0; q < samples.n_points(); ++q)
+          if (on_segment(samples.points.col(q), ref.nodes.col(a), ref.nodes.col(b))) mask[static_cast<std::size_t>(q)] = 1;
+      };
       std::vector<int> on;  // the facets whose nodes are all fitted
       for (std::size_t f = 0; f < ref.facet_nodes.size(); ++f)
-        if (std::all_of(ref.facet_nodes[f].begin(), ref.facet_nodes[f].end(),
-                        [&](int a) { return fitted[static_cast<std::size_t>(block.nodes[c * n + a])] != 0; }))
-          on.push_back(static_cast<int>(f));
-      std::vector<std::uint8_t> mask;
+        if (all_fitted(ref.facet_nodes[f])) on.push_back(static_cast<int>(f));
       for (std::size_t i = 0; i < on.size(); ++i)
         for (std::size_t j = i + 1; j < on.size(); ++j) {
           std::vector<int> shared;  // the corners of the edge (3D) or the corner (2D) between them
           for (int a : corners[static_cast<std::size_t>(on[i])])
             if (std::ranges::count(corners[static_cast<std::size_t>(on[j])], a)) shared.push_back(a);
-          if (static_cast<int>(shared.size()) != mesh.dim - 1) continue;
-          mask.resize(static_cast<std::size_t>(samples.n_points()), 0);
-          const Eigen::VectorXd a = ref.nodes.col(shared.front()), b = ref.nodes.col(shared.back());
-          for (int q = 0; q < samples.n_points(); ++q)
-            if (on_segment(samples.points.col(q), a, b)) mask[static_cast<std::size_t>(q)] = 1;
+          if (static_cast<int>(shared.size()) == mesh.dim - 1) flag(shared.front(), shared.back());
         }
+      // A corner whose three edges lie on the level set: their tangents span its tangent
+      // plane only, so det A = 0 there even where no two of its facets are fitted.
+      for (int a = 0; a < n_corners && !edges.empty(); ++a) {
+        int incident = 0, fitted_edges = 0;
+        for (std::size_t e = 0; e < edges.size(); ++e)
+          if (edges[e][0] == a || edges[e][1] == a) {
+            ++incident;
+            fitted_edges += all_fitted(edge_nodes[e]);
+          }
+        if (fitted_edges == incident) flag(a, a);
+      }
       if (mask.empty()) continue;
       mask_of[c] = static_cast<std::int32_t>(out.masks.size());
       out.masks.push_back(std::move(mask));

@@ -183,6 +183,35 @@ TEST(FitInterface, FlatEdgesAreTheEdgesBetweenTwoFittedFacets) {
     }
 }
 
+// A corner whose three edges are fitted, without two fitted facets: that corner only.
+TEST(FitInterface, ACornerWithThreeFittedEdgesIsFlat) {
+  for (ElementType type : {ElementType::Hexahedron, ElementType::Tetrahedron})
+    for (int order = 1; order <= 3; ++order) {
+      SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+      const Mesh mesh = structured_mesh(type, order, 1);
+      std::vector<std::uint8_t> fitted(mesh.n_nodes(), 0);  // the nodes with two coordinates 1
+      for (Eigen::Index j = 0; j < mesh.x.cols(); ++j)
+        fitted[static_cast<std::size_t>(j)] = (mesh.x.col(j).array() > 1 - 1e-12).count() >= 2;
+      const FlatEdges flat = flat_edges(mesh, fitted);
+      const CellBlock& block = mesh.cells[0];
+      const ShapeTable& samples = validity_samples(block.type, block.order);
+      std::size_t cells = 0;
+      for (std::size_t c = 0; c < block.n_cells(); ++c) {
+        const std::int32_t k = flat.mask_of_cell[0][c];
+        if (k < 0) continue;
+        ++cells;
+        const Eigen::MatrixXd image = cell_coordinates(mesh, block, c) * samples.N;
+        for (int q = 0; q < samples.n_points(); ++q)
+          EXPECT_EQ(flat.masks[static_cast<std::size_t>(k)][static_cast<std::size_t>(q)] != 0,
+                    (image.col(q).array() > 1 - 1e-9).all())
+              << "cell " << c << " sample " << q;
+      }
+      // The hexahedron; no structured tetrahedron has its three edges at (1, 1, 1) on those
+      // lines (their edges there include a face or body diagonal).
+      EXPECT_EQ(cells, type == ElementType::Hexahedron ? 1u : 0u);
+    }
+}
+
 // Nodes already on the level set (the line x = 0.5 through a column of nodes) and a mesh
 // at its metric's minimum: nothing moves.
 TEST(Fit, AFittedOptimalMeshIsAFixedPoint) {

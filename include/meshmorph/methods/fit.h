@@ -62,8 +62,9 @@ std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topo
 /// The validity samples that lie on a flat edge: in 3D an edge shared by two facets of one
 /// cell whose nodes are all fitted, in 2D a corner shared by two such facets. Both facets
 /// end on the level set's smooth surface, so the cell's angle there tends to 180° and det A
-/// to 0 (every convex and concave edge of a hexahedral staircase has one such cell: paper
-/// 003 §3.3, §4.1).
+/// to 0 (every convex edge of a hexahedral staircase has one such cell: paper 003 §3.3,
+/// §4.1). In 3D also a corner whose three edges have all their nodes fitted (det A there is
+/// the triple product of three tangents of the surface).
 struct FlatEdges {
   /// Per cell block, per cell: the index of its mask in `masks`, −1 for a cell without.
   std::vector<std::vector<std::int32_t>> mask_of_cell;
