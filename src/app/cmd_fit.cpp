@@ -151,7 +151,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
     trim.emplace(checked_level_set(*c.trim, mesh, lso, a.case_file + ": trim"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
-    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split);
+    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, !settings.fit.flat_edges);
     if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, keep);
       split_count += to_split.size();
@@ -178,7 +178,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
         for (std::size_t k = 0; k < block.n_cells(); ++k)
           eta.push_back(!block.physical.empty() && block.physical[k] == group->tag ? 1 : 0);
     } else {
-      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split);
+      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, !settings.fit.flat_edges);
     }
     if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       if (trim) throw InputError(a.case_file + ": trim with an interface: give the interface's materials, or fit one at a time");

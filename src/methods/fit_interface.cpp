@@ -69,7 +69,7 @@ std::vector<int> interface_facet_counts(const Topology& topology, const std::vec
 }
 
 std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
-                                             std::vector<std::int32_t>& to_split) {
+                                             std::vector<std::int32_t>& to_split, bool reduce_crowding) {
   const auto marked = [&](std::size_t c) {
     int m = 0;
     for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k) {
@@ -94,7 +94,7 @@ std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vect
         n += marked(static_cast<std::size_t>(other)) >= 2 ? 1 : 0;
     return n;
   };
-  for (bool flipped = true; flipped;) {
+  for (bool flipped = reduce_crowding; flipped;) {
     flipped = false;
     for (std::size_t c = 0; c < eta.size(); ++c) {
       if (marked(c) < 2) continue;
