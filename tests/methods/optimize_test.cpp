@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/elevate.h"
+#include "meshmorph/fem/lagrange_basis.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/geometry/facet_surface.h"
 #include "methods/detail/fit_problem.h"
 
 namespace meshmorph {
@@ -166,7 +168,7 @@ TEST(OptimizeSlide, PlanarBoundarySlidesOnTheCubesFacesAndEdges) {
   Mesh mesh = structured_mesh(ElementType::Hexahedron, 2, 3);
   const Topology topo = build_topology(mesh);
   std::vector<std::uint8_t> fixed(3 * mesh.n_nodes(), 0);
-  const std::vector<FitTerm> slides = planar_boundary_slides(mesh, topo, fixed);
+  const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, fixed);
   EXPECT_EQ(slides.size(), 6u);
   std::size_t fixed_nodes = 0;
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed_nodes += fixed[3 * i];
@@ -184,6 +186,60 @@ TEST(OptimizeSlide, PlanarBoundarySlidesOnTheCubesFacesAndEdges) {
   EXPECT_LT(r.energy, 1e-12);
   for (const FitTerm& t : slides)
     for (std::int32_t node : t.nodes) EXPECT_LT(std::abs(t.sigma.value(x.col(node))), 1e-14);
+}
+
+// `--boundary slide` on a quarter annulus of curved cells: both arcs slide on their own
+// discrete curves (the input's P2/P3 edges, no level set given), the straight sides on their
+// lines, and the 4 corners stay. The arcs' nodes end on the input's curves to rounding, so
+// within the input's distance from the exact circles, and the energy ends below the fixed
+// boundary's.
+TEST(OptimizeSlide, CurvedBoundarySlidesOnTheInputsDiscreteCurves) {
+  for (int order : {2, 3}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    const Mesh mesh = quarter_annulus(ElementType::Quadrilateral, order, 4);
+    const Topology topo = build_topology(mesh);
+    std::vector<std::uint8_t> fixed(2 * mesh.n_nodes(), 0);
+    const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, fixed);
+    EXPECT_EQ(slides.size(), 4u);
+    std::size_t fixed_nodes = 0;
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed_nodes += fixed[2 * i];
+    EXPECT_EQ(fixed_nodes, 4u);
+    // The inner arc's facets, and how far the input's curve strays from the unit circle.
+    std::vector<std::int32_t> arc;
+    double input_error = 0.0;
+    for (std::int32_t f : topo.boundary_facets) {
+      const CellFacet cf = topo.facets[static_cast<std::size_t>(f)][0];
+      const auto [blk, cell] = topo.locate(cf.cell);
+      const std::vector<std::int32_t> nodes = facet_nodes(mesh.cells[blk], cell, cf.local);
+      if (std::abs(mesh.x.col(nodes[0]).norm() - 1.0) > 1e-12 || std::abs(mesh.x.col(nodes[1]).norm() - 1.0) > 1e-12) continue;
+      arc.push_back(f);
+      const LagrangeBasis& basis = lagrange_basis(ElementType::Line, order);
+      for (int i = 0; i <= 1000; ++i)
+        input_error = std::max(input_error, std::abs((mesh.x(Eigen::all, nodes) * basis.values(Eigen::VectorXd::Constant(1, -1.0 + i / 500.0))).norm() - 1.0));
+    }
+    ASSERT_EQ(arc.size(), 4u);
+    const LevelSetFunction curve = facet_surface(mesh, topo, arc);
+    Eigen::MatrixXd x_fixed = mesh.x;
+    const OptimizeResult rf = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, {}, x_fixed);
+    Eigen::MatrixXd x = mesh.x;
+    const OptimizeResult r = optimize_mesh(mesh, topo, fixed, slides, {}, x);
+    EXPECT_TRUE(r.converged) << r.message;
+    EXPECT_LT(r.energy, rf.energy);
+    EXPECT_GT(r.min_det, 0.0);
+    double off_curve = 0.0, off_circle = 0.0, moved = 0.0;
+    for (std::int32_t node : boundary_nodes(mesh, topo)) {
+      if (std::abs(mesh.x.col(node).norm() - 1.0) > 1e-12) continue;
+      off_curve = std::max(off_curve, std::abs(curve.value(x.col(node))));
+      off_circle = std::max(off_circle, std::abs(x.col(node).norm() - 1.0));
+      moved = std::max(moved, (x.col(node) - mesh.x.col(node)).norm());
+    }
+    EXPECT_LT(off_curve, 1e-14);
+    EXPECT_LE(off_circle, input_error + 1e-14);
+    EXPECT_GT(input_error, 1e-6);  // the input's curve is not the circle: the bound above means something
+    EXPECT_GT(moved, 1e-3);
+    for (const FitTerm& t : slides)
+      for (std::int32_t node : t.nodes) EXPECT_LT(std::abs(t.sigma.value(x.col(node))), 1e-14);
+  }
 }
 
 }  // namespace

@@ -62,6 +62,9 @@ class LevelSetFunction {
   /// value is not finite (naming the node) or the mesh has no cells.
   LevelSetFunction(Mesh background, Eigen::VectorXd values);
 
+  /// A level set from a compiled node: for the builders of geometry/ (facet_surface.h).
+  LevelSetFunction(std::shared_ptr<const detail::LevelSetNode> root, int dim) : dim_(dim), root_(std::move(root)) {}
+
   int dim() const { return dim_; }
 
   /// σ(x); x has dim() entries.
