@@ -47,12 +47,13 @@ struct Facet {
 
 // φ, ∂φ/∂u (d × m) and ∂²φ/∂u_k∂u_l (column k·m + l, d × m²) at u.
 struct FacetPoint {
+  ElementType type;
   Eigen::VectorXd u, p;
   Eigen::MatrixXd T, S;
 };
 
 FacetPoint evaluate(const Facet& f, const Eigen::VectorXd& u) {
-  return {u, f.nodes * f.basis->values(u), f.nodes * f.basis->gradients(u), f.nodes * f.basis->hessians(u)};
+  return {f.basis->type(), u, f.nodes * f.basis->values(u), f.nodes * f.basis->gradients(u), f.nodes * f.basis->hessians(u)};
 }
 
 
@@ -93,7 +94,7 @@ FacetPoint closest_on_segment(const Facet& f, const Eigen::VectorXd& x, const Ei
     double h = pt.squaredNorm() - r.dot(ptt);
     if (!(h > 0.0)) h = pt.squaredNorm();
     const double t_new = std::clamp(t + r.dot(pt) / h, 0.0, 1.0);
-    const bool done = std::abs(t_new - t) <= 1e-15;
+    const bool done = std::abs(t_new - t) <= 1e-14;  // quadratic: the next step is at rounding
     t = t_new;
     q = evaluate(f, a + t * e);
     if (done) break;
@@ -117,7 +118,7 @@ Hit closest_on_facet(const Facet& f, const Eigen::MatrixXd& params, const Eigen:
     Eigen::LLT<Eigen::MatrixXd> llt(H);
     if (llt.info() != Eigen::Success) llt.compute(G);
     const Eigen::VectorXd u = clip(type, q.u + llt.solve(q.T.transpose() * r));
-    const bool done = (u - q.u).norm() <= 1e-15;
+    const bool done = (u - q.u).norm() <= 1e-14;  // quadratic: the next step is at rounding
     q = evaluate(f, u);
     if (done) break;
   }
@@ -159,6 +160,44 @@ Eigen::MatrixXd facet_hessian(const FacetPoint& q, const Eigen::VectorXd& n, dou
   return 0.5 * (H + H.transpose());
 }
 
+// |projection of −g onto T·K|, K the reference directions du that stay in the facet from u
+// (rows a of the active constraints a·du ≥ 0): min ½|T du + g|² over K by its active sets.
+double cone_descent(const FacetPoint& q, const Eigen::VectorXd& g) {
+  constexpr double tol = 1e-6;  // ε-active: as at the crease within 1e-6 of it (below)
+  const int m = static_cast<int>(q.T.cols());
+  std::vector<Eigen::VectorXd> rows;
+  if (q.type == ElementType::Triangle) {
+    if (q.u[0] <= tol) rows.push_back(Eigen::Vector2d(1.0, 0.0));
+    if (q.u[1] <= tol) rows.push_back(Eigen::Vector2d(0.0, 1.0));
+    if (q.u.sum() >= 1.0 - tol) rows.push_back(Eigen::Vector2d(-1.0, -1.0));
+  } else {
+    for (int k = 0; k < m; ++k) {
+      if (q.u[k] >= 1.0 - tol) rows.push_back(-Eigen::VectorXd::Unit(m, k));
+      if (q.u[k] <= -1.0 + tol) rows.push_back(Eigen::VectorXd::Unit(m, k));
+    }
+  }
+  const Eigen::MatrixXd G = q.T.transpose() * q.T;
+  const Eigen::VectorXd b = -q.T.transpose() * g;
+  auto feasible = [&](const Eigen::VectorXd& du) {
+    for (const Eigen::VectorXd& a : rows)
+      if (a.dot(du) < -1e-12 * du.norm()) return false;
+    return true;
+  };
+  // The minimiser on {du : a·du = 0} is du = Z (ZᵀGZ)⁻¹ Zᵀb, of objective −½ bᵀdu; du = 0 is always feasible.
+  double best_objective = 0.0, descent = 0.0;
+  auto offer = [&](const Eigen::MatrixXd& Z) {
+    const Eigen::VectorXd du = Z * (Z.transpose() * G * Z).ldlt().solve(Z.transpose() * b);
+    if (du.allFinite() && feasible(du) && -0.5 * b.dot(du) < best_objective) {
+      best_objective = -0.5 * b.dot(du);
+      descent = (q.T * du).norm();
+    }
+  };
+  offer(Eigen::MatrixXd::Identity(m, m));
+  if (m == 2)
+    for (const Eigen::VectorXd& a : rows) offer(Eigen::Vector2d(-a[1], a[0]));
+  return descent;
+}
+
 class FacetSurface final : public LevelSetNode {
  public:
   FacetSurface(std::vector<Facet> facets, std::map<std::pair<ElementType, int>, Eigen::MatrixXd> params, double tol)
@@ -184,10 +223,43 @@ class FacetSurface final : public LevelSetNode {
     return H / static_cast<double>(f.through.size());
   }
   std::optional<Vec> closest_point(const Vec& x) const override { return foot(x).through.front().p; }
+  // A node that Newton drives into a crease from both sides comes within ~1e-10 of it, but its
+  // steps across it fail the line search: within 1e-8 (of S's size, and of the reference
+  // facet) it counts as on the crease, its cones those of the facets there.
+  double stationarity(const Vec& x, const Vec& g) const override {
+    const Foot f = foot(x, 1e6 * tol_);
+    return f.on_surface ? crease_descent(f, g) : LevelSetNode::stationarity(x, g);
+  }
+  // Newton steps through a crease that the energy pushes x into from both sides overshoot, and
+  // the line search then blocks every other node: such a node keeps to the crease instead.
+  Eigen::MatrixXd step_normals(const Vec& x, const Vec& g) const override {
+    const Foot f = foot(x, 1e6 * tol_);
+    if (!f.on_surface || f.through.size() < 2) return f.n;
+    // Orthonormal basis of the facets' normals, nearly parallel ones dropped (Gram–Schmidt).
+    Eigen::MatrixXd N(x.size(), 0);
+    for (const FacetPoint& q : f.through) {
+      Vec n = outward_normal(q.T);
+      n -= N * (N.transpose() * n);
+      if (n.norm() > 1e-6) {
+        N.conservativeResize(Eigen::NoChange, N.cols() + 1);
+        N.col(N.cols() - 1) = n.normalized();
+      }
+      if (N.cols() == x.size()) break;
+    }
+    const double along = (g - N * (N.transpose() * g)).norm();
+    // Otherwise the step enters the facet of steepest descent, in its tangent plane: the mean
+    // plane may lead into a neighbour where the energy rises, across the crease.
+    double steepest = 0.0;
+    const FacetPoint* into = &f.through.front();
+    for (const FacetPoint& q : f.through)
+      if (const double t = cone_descent(q, g); t > steepest) steepest = t, into = &q;
+    return steepest <= along + 1e-12 * g.norm() ? N : Eigen::MatrixXd(outward_normal(into->T));
+  }
 
  private:
   struct Foot {
     double sigma = 0.0;
+    bool on_surface = false;
     Vec n;                               // ∇σ
     std::vector<FacetPoint> through;     // the foot point on each facet it belongs to (the nearest first)
   };
@@ -224,26 +296,40 @@ class FacetSurface final : public LevelSetNode {
     return me;
   }
 
-  Foot foot(const Vec& x) const {
+  static double crease_descent(const Foot& f, const Vec& g) {
+    double descent = 0.0;  // the steepest of the facets' cones: together they cover S around x
+    for (const FacetPoint& q : f.through) descent = std::max(descent, cone_descent(q, g));
+    return descent;
+  }
+
+  double box_distance2(const Eigen::Vector3d& x, int box) const {
+    const Box& b = boxes_[static_cast<std::size_t>(box)];
+    return (x - x.cwiseMax(b.lo).cwiseMin(b.hi)).squaredNorm();
+  }
+
+  Foot foot(const Vec& x) const { return foot(x, tol_); }
+  // `tol`: the distance within which x counts as on S.
+  Foot foot(const Vec& x, double tol) const {
     Eigen::Vector3d x3 = Eigen::Vector3d::Zero();
     x3.head(x.size()) = x;
     std::vector<std::pair<int, Hit>> near;  // facets within tol of x, or the nearest one
     Hit best;
     std::vector<int> stack{0};
     while (!stack.empty()) {
-      const Box& b = boxes_[static_cast<std::size_t>(stack.back())];
+      const int top = stack.back();
       stack.pop_back();
-      const double bound = (x3 - x3.cwiseMax(b.lo).cwiseMin(b.hi)).squaredNorm();
-      if (bound > std::max(best.dist2, tol_ * tol_)) continue;
-      if (b.left >= 0) {
-        stack.push_back(b.left);
-        stack.push_back(b.right);
+      if (box_distance2(x3, top) > std::max(best.dist2, tol * tol)) continue;
+      const Box& b = boxes_[static_cast<std::size_t>(top)];
+      if (b.left >= 0) {  // the nearer child on top: it tightens the bound sooner
+        const bool left_first = box_distance2(x3, b.left) <= box_distance2(x3, b.right);
+        stack.push_back(left_first ? b.right : b.left);
+        stack.push_back(left_first ? b.left : b.right);
         continue;
       }
       for (int i = b.first; i < b.first + b.count; ++i) {
         const Facet& f = facets_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
         Hit h = closest_on_facet(f, params_.at({f.basis->type(), f.basis->order()}), x);
-        if (h.dist2 <= tol_ * tol_) near.emplace_back(order_[static_cast<std::size_t>(i)], h);
+        if (h.dist2 <= tol * tol) near.emplace_back(order_[static_cast<std::size_t>(i)], h);
         if (h.dist2 < best.dist2) best = std::move(h);
       }
     }
@@ -270,6 +356,7 @@ class FacetSurface final : public LevelSetNode {
     }
     f.n.normalize();
     f.sigma = (x - f.through.front().p).dot(f.n);
+    f.on_surface = true;
     return f;
   }
 
