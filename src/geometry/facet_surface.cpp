@@ -163,7 +163,7 @@ Eigen::MatrixXd facet_hessian(const FacetPoint& q, const Eigen::VectorXd& n, dou
 // |projection of −g onto T·K|, K the reference directions du that stay in the facet from u
 // (rows a of the active constraints a·du ≥ 0): min ½|T du + g|² over K by its active sets.
 double cone_descent(const FacetPoint& q, const Eigen::VectorXd& g) {
-  constexpr double tol = 1e-6;  // ε-active: as at the crease within 1e-6 of it (below)
+  constexpr double tol = 1e-8;  // ε-active: as at the crease within 1e-8 of it (below)
   const int m = static_cast<int>(q.T.cols());
   std::vector<Eigen::VectorXd> rows;
   if (q.type == ElementType::Triangle) {
@@ -227,13 +227,13 @@ class FacetSurface final : public LevelSetNode {
   // steps across it fail the line search: within 1e-8 (of S's size, and of the reference
   // facet) it counts as on the crease, its cones those of the facets there.
   double stationarity(const Vec& x, const Vec& g) const override {
-    const Foot f = foot(x, 1e6 * tol_);
+    const Foot f = foot(x, 1e4 * tol_);
     return f.on_surface ? crease_descent(f, g) : LevelSetNode::stationarity(x, g);
   }
   // Newton steps through a crease that the energy pushes x into from both sides overshoot, and
   // the line search then blocks every other node: such a node keeps to the crease instead.
   Eigen::MatrixXd step_normals(const Vec& x, const Vec& g) const override {
-    const Foot f = foot(x, 1e6 * tol_);
+    const Foot f = foot(x, 1e4 * tol_);
     if (!f.on_surface || f.through.size() < 2) return f.n;
     // Orthonormal basis of the facets' normals, nearly parallel ones dropped (Gram–Schmidt).
     Eigen::MatrixXd N(x.size(), 0);

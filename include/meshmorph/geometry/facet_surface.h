@@ -33,6 +33,10 @@ Eigen::VectorXd outward_normal(const Eigen::MatrixXd& T);
 /// through p; at points of the rim and of the wedges around facet edges, that of the facet
 /// (the Hessian of the distance to a curve or point is not used). closest_point(x) is p, on S
 /// to rounding, so a Gauss–Newton projection x − σ∇σ lands on S in one step off the rim.
+/// Creases (S is C⁰ across facet edges; x within 1e-8 of S's size from one, 1e-8 of the
+/// reference facet): stationarity(x, g) is the largest descent over the tangent cones of the
+/// facets through x, and step_normals(x, g) all their normals when no cone descends more than
+/// the crease itself (the step follows the crease), else the normal of the steepest facet.
 LevelSetFunction facet_surface(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets);
 
 }  // namespace meshmorph
