@@ -52,7 +52,7 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   r.read("quadrature_degree", o.quadrature_degree, 0, 30);
   o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
   r.read("target", target, {"ideal", "input"});
-  r.read("boundary", s.boundary, {"fixed", "slide"});
+  r.read("boundary", s.boundary, {"fixed", "slide", "slide-planes"});
   r.read("feature_angle", s.feature_angle, 0.0, 180.0);
   r.read("max_newton", o.max_newton, 1, 100000);
   r.read("rtol", o.rtol, 0.0, 1.0);
@@ -139,7 +139,7 @@ std::vector<FitTerm> case_slides(const CaseFile& c, Mesh& mesh, const Topology& 
             facets.push_back(f);
         }
         if (facets.empty()) throw InputError(where + ".slide: the group's nodes are not on one plane and hold no boundary facet");
-        for (FitTerm& t : boundary_slides(mesh, topology, facets, feature_angle, fixed)) slides.push_back(std::move(t));
+        for (FitTerm& t : boundary_slides(mesh, topology, facets, feature_angle, true, fixed)) slides.push_back(std::move(t));
         continue;
       }
       slides.push_back({LevelSetFunction(LevelSet{PlaneLevelSet{centre, normal}, b.key_path}, d, lso), std::move(nodes)});
@@ -221,8 +221,9 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   // Unknowns: interior nodes free; the boundary as the case's entries and `boundary` say.
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
   std::vector<FitTerm> slides;
-  if (settings.boundary == "slide") {
-    slides = boundary_slides(start_mesh, topology, topology.boundary_facets, settings.feature_angle, fixed);
+  if (settings.boundary != "fixed") {
+    slides = boundary_slides(start_mesh, topology, topology.boundary_facets, settings.feature_angle,
+                             settings.boundary == "slide", fixed);
   } else {
     for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
   }
@@ -316,8 +317,9 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   cmd->add_option("--metric", args->metric, "mu2 (2D) | mu303 (3D) | mu77 | mu80 | distortion | distortion2")
       ->check(CLI::IsMember({"mu2", "mu303", "mu77", "mu80", "distortion", "distortion2"}));
   cmd->add_option("--target", args->target, "ideal (default) | input")->check(CLI::IsMember({"ideal", "input"}));
-  cmd->add_option("--boundary", args->boundary, "fixed (default) | slide (on the boundary's own planes and curved facets)")
-      ->check(CLI::IsMember({"fixed", "slide"}));
+  cmd->add_option("--boundary", args->boundary,
+                  "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
+      ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
   cmd->callback([args, &run, &threads] {
     run = [args, &threads](std::ostream& out) { return run_optimize(*args, threads, out); };
   });

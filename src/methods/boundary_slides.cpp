@@ -64,7 +64,7 @@ int root(std::vector<int>& parent, int i) {
 }  // namespace
 
 std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
-                                     double feature_angle, std::vector<std::uint8_t>& fixed) {
+                                     double feature_angle, bool curved, std::vector<std::uint8_t>& fixed) {
   const int d = mesh.dim;
   const double size = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
   const double tol = 1e-10 * size;
@@ -108,7 +108,12 @@ std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology,
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<std::pair<std::int32_t, std::int32_t>> sharp;
   for (const auto& [key, uses] : joints) {
-    if (uses.size() == 2 && normal_at(uses[0].first, uses[0].second).dot(normal_at(uses[1].first, uses[1].second)) >= cos_feature) {
+    // Planes only: facets join when they lie on one plane (a patch is then a plane).
+    const auto joins = [&](int i, int j) {
+      return curved ? normal_at(i, uses[0].second).dot(normal_at(j, uses[1].second)) >= cos_feature
+                    : bf[static_cast<std::size_t>(i)].plane >= 0 && bf[static_cast<std::size_t>(i)].plane == bf[static_cast<std::size_t>(j)].plane;
+    };
+    if (uses.size() == 2 && joins(uses[0].first, uses[1].first)) {
       parent[static_cast<std::size_t>(root(parent, uses[0].first))] = root(parent, uses[1].first);
     } else if (uses.size() > 1) {
       sharp.push_back(key);
@@ -168,6 +173,7 @@ std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology,
   std::vector<std::vector<std::int32_t>> members(n_patches);
   for (const auto& [node, list] : node_patches) {
     bool slides = !creased[static_cast<std::size_t>(node)] && static_cast<int>(list.size()) < d;
+    for (int id : list) slides = slides && (curved || patch_plane[static_cast<std::size_t>(id)] >= 0);
     if (slides && list.size() == 2) {
       const Eigen::VectorXd p = mesh.x.col(node);
       slides = std::abs(level_set(list[0]).gradient(p).dot(level_set(list[1]).gradient(p))) < 1.0 - 1e-12;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/methods/optimize.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -169,7 +170,7 @@ TEST(OptimizeSlide, PlanarBoundarySlidesOnTheCubesFacesAndEdges) {
   Mesh mesh = structured_mesh(ElementType::Hexahedron, 2, 3);
   const Topology topo = build_topology(mesh);
   std::vector<std::uint8_t> fixed(3 * mesh.n_nodes(), 0);
-  const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, fixed);
+  const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, true, fixed);
   EXPECT_EQ(slides.size(), 6u);
   std::size_t fixed_nodes = 0;
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed_nodes += fixed[3 * i];
@@ -202,11 +203,19 @@ TEST(OptimizeSlide, CurvedBoundarySlidesOnTheInputsDiscreteCurves) {
     const Mesh mesh = quarter_annulus(ElementType::Quadrilateral, order, 4, order == 2 ? 0.1 : 0.0);
     const Topology topo = build_topology(mesh);
     std::vector<std::uint8_t> fixed(2 * mesh.n_nodes(), 0);
-    const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, fixed);
+    const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, true, fixed);
     EXPECT_EQ(slides.size(), 4u);
     std::size_t fixed_nodes = 0;
     for (std::size_t i = 0; i < mesh.n_nodes(); ++i) fixed_nodes += fixed[2 * i];
     EXPECT_EQ(fixed_nodes, 4u);
+    // Planes only (`slide-planes`): the straight sides slide, every node of the arcs is fixed.
+    std::vector<std::uint8_t> planar_fixed(2 * mesh.n_nodes(), 0);
+    const std::vector<FitTerm> planar = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, false, planar_fixed);
+    EXPECT_EQ(planar.size(), 2u);
+    std::size_t planar_free = 0;
+    for (const FitTerm& t : planar) planar_free += t.nodes.size();
+    EXPECT_EQ(planar_free + static_cast<std::size_t>(std::count(planar_fixed.begin(), planar_fixed.end(), 1)) / 2,
+              boundary_nodes(mesh, topo).size());
     // The inner arc's facets, and how far the input's curve strays from the unit circle.
     std::vector<std::int32_t> arc;
     double input_error = 0.0;
@@ -286,7 +295,7 @@ TEST(OptimizeSlide, SphereSlidesOnItsOwnCurvedFacets) {
     std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
     Eigen::MatrixXd x_fixed = mesh.x;
     const OptimizeResult rf = optimize_mesh(mesh, topo, fixed, {}, {}, x_fixed);
-    const std::vector<FitTerm> slides = boundary_slides(mesh, topo, sphere_facets, 30.0, fixed);
+    const std::vector<FitTerm> slides = boundary_slides(mesh, topo, sphere_facets, 30.0, true, fixed);
     ASSERT_EQ(slides.size(), 1u);
     EXPECT_EQ(slides[0].nodes.size(), sphere.size());
     Eigen::MatrixXd x = mesh.x;

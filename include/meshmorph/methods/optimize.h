@@ -85,7 +85,9 @@ OptimizeResult optimize_mesh(const Mesh& mesh, const Topology& topology, const s
 /// (corners, nodes of 3+ patches, of a crease inside one patch, or of two patches tangent
 /// there) is fixed. Sets the flags of those nodes in `fixed` (one per DOF: 0 for a sliding
 /// node, 1 for a fixed one) and returns one entry per patch that holds a sliding node.
+/// Without `curved` (`--boundary slide-planes`, MFEM's `-bnd`) only coplanar facets join and
+/// the nodes of curved facets are fixed: nodes slide on planes and on the lines where two meet.
 std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
-                                     double feature_angle, std::vector<std::uint8_t>& fixed);
+                                     double feature_angle, bool curved, std::vector<std::uint8_t>& fixed);
 
 }  // namespace meshmorph
