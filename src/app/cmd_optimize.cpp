@@ -38,6 +38,7 @@ struct OptimizeArgs {
 struct OptimizeSettings {
   OptimizeOptions options;
   std::string boundary = "fixed";  // what happens to boundary nodes that no case entry names
+  double feature_angle = 30.0;     // degrees: sliding patches split where the normals turn more
 };
 
 // The options of docs/optimize.md; the command line overrides the case file.
@@ -51,7 +52,8 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   r.read("quadrature_degree", o.quadrature_degree, 0, 30);
   o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
   r.read("target", target, {"ideal", "input"});
-  r.read("boundary", s.boundary, {"fixed", "slide"});
+  r.read("boundary", s.boundary, {"fixed", "slide", "slide-planes"});
+  r.read("feature_angle", s.feature_angle, 0.0, 180.0);
   r.read("max_newton", o.max_newton, 1, 100000);
   r.read("rtol", o.rtol, 0.0, 1.0);
   r.read("growth", o.growth, 1.0, 1e6);
@@ -88,8 +90,10 @@ Eigen::MatrixXd untangled(const Mesh& mesh, const Topology& topology, const std:
 
 // The slide constraints of a case: `project` entries slide on their level set (their nodes
 // are first moved onto it, e.g. the new nodes of an elevated mesh; that must leave `mesh`
-// valid), `slide` entries on the plane of their group.
-std::vector<FitTerm> case_slides(const CaseFile& c, Mesh& mesh, std::vector<std::uint8_t>& fixed) {
+// valid), `slide` entries on the plane of their group, or when its nodes are not on one
+// plane, on the smooth patches of its boundary facets (boundary_slides).
+std::vector<FitTerm> case_slides(const CaseFile& c, Mesh& mesh, const Topology& topology, double feature_angle,
+                                 std::vector<std::uint8_t>& fixed) {
   const int d = mesh.dim;
   const double size = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
   LevelSetOptions lso;
@@ -122,8 +126,22 @@ std::vector<FitTerm> case_slides(const CaseFile& c, Mesh& mesh, std::vector<std:
       const Eigen::MatrixXd Y = X.colwise() - centre;
       const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Y * Y.transpose());
       const Eigen::VectorXd normal = eig.eigenvectors().col(0);
-      if ((normal.transpose() * Y).cwiseAbs().maxCoeff() > 1e-10 * size)
-        throw InputError(where + ".slide: the group's nodes do not lie on one plane");
+      if ((normal.transpose() * Y).cwiseAbs().maxCoeff() > 1e-10 * size) {
+        // Curved: the boundary facets whose nodes are all in the group.
+        std::vector<std::uint8_t> in(mesh.n_nodes(), 0);
+        for (std::int32_t node : nodes) in[static_cast<std::size_t>(node)] = 1;
+        std::vector<std::int32_t> facets;
+        for (std::int32_t f : topology.boundary_facets) {
+          const CellFacet cf = topology.facets[static_cast<std::size_t>(f)][0];
+          const auto [blk, cell] = topology.locate(cf.cell);
+          const std::vector<std::int32_t> fn = facet_nodes(mesh.cells[blk], cell, cf.local);
+          if (std::all_of(fn.begin(), fn.end(), [&](std::int32_t n) { return in[static_cast<std::size_t>(n)] != 0; }))
+            facets.push_back(f);
+        }
+        if (facets.empty()) throw InputError(where + ".slide: the group's nodes are not on one plane and hold no boundary facet");
+        for (FitTerm& t : boundary_slides(mesh, topology, facets, feature_angle, true, fixed)) slides.push_back(std::move(t));
+        continue;
+      }
       slides.push_back({LevelSetFunction(LevelSet{PlaneLevelSet{centre, normal}, b.key_path}, d, lso), std::move(nodes)});
     } else if (std::holds_alternative<FixedMotion>(b.motion)) {
       continue;  // below, so that `fixed` wins over a slide entry whatever the order
@@ -203,13 +221,14 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   // Unknowns: interior nodes free; the boundary as the case's entries and `boundary` say.
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
   std::vector<FitTerm> slides;
-  if (settings.boundary == "slide") {
-    slides = planar_boundary_slides(start_mesh, topology, fixed);
+  if (settings.boundary != "fixed") {
+    slides = boundary_slides(start_mesh, topology, topology.boundary_facets, settings.feature_angle,
+                             settings.boundary == "slide", fixed);
   } else {
     for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
   }
   if (c) {
-    std::vector<FitTerm> more = case_slides(*c, start_mesh, fixed);  // may move nodes onto level sets
+    std::vector<FitTerm> more = case_slides(*c, start_mesh, topology, settings.feature_angle, fixed);  // may move nodes onto level sets
     // A node that a case entry names follows that entry, not the automatic planes.
     std::vector<std::uint8_t> named(mesh.n_nodes(), 0);
     for (const BoundaryCondition& b : c->boundary)
@@ -298,8 +317,9 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   cmd->add_option("--metric", args->metric, "mu2 (2D) | mu303 (3D) | mu77 | mu80 | distortion | distortion2")
       ->check(CLI::IsMember({"mu2", "mu303", "mu77", "mu80", "distortion", "distortion2"}));
   cmd->add_option("--target", args->target, "ideal (default) | input")->check(CLI::IsMember({"ideal", "input"}));
-  cmd->add_option("--boundary", args->boundary, "fixed (default) | slide (on the boundary's planes)")
-      ->check(CLI::IsMember({"fixed", "slide"}));
+  cmd->add_option("--boundary", args->boundary,
+                  "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
+      ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
   cmd->callback([args, &run, &threads] {
     run = [args, &threads](std::ostream& out) { return run_optimize(*args, threads, out); };
   });

@@ -77,6 +77,26 @@ Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
   return coeffs_.transpose() * dmono;
 }
 
+Eigen::MatrixXd LagrangeBasis::hessians(const Eigen::VectorXd& xi) const {
+  const int n = this->n(), d = dim();
+  Eigen::MatrixXd ddmono(n, d * d);
+  for (int m = 0; m < n; ++m)
+    for (int g = 0; g < d; ++g)
+      for (int h = 0; h < d; ++h) {
+        double v = 1.0;
+        for (int k = 0; k < d; ++k) {
+          const int e = exponents_(k, m), times = (k == g) + (k == h);  // differentiate times ∈ {0, 1, 2}
+          if (e < times) {
+            v = 0.0;
+            break;
+          }
+          v *= (times == 0 ? 1 : times == 1 ? e : e * (e - 1)) * ipow(xi(k), e - times);
+        }
+        ddmono(m, g * d + h) = v;
+      }
+  return coeffs_.transpose() * ddmono;
+}
+
 const LagrangeBasis& lagrange_basis(ElementType type, int order) {
   static std::mutex mutex;
   static std::map<std::pair<ElementType, int>, std::unique_ptr<LagrangeBasis>> cache;

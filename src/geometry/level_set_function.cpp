@@ -169,6 +169,18 @@ Eigen::MatrixXd LevelSetFunction::hessian(const Eigen::Ref<const Eigen::VectorXd
   return root_->hessian(x);
 }
 
+double LevelSetFunction::stationarity(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                      const Eigen::Ref<const Eigen::VectorXd>& g) const {
+  MESHMORPH_CHECK(x.size() == dim_ && g.size() == dim_, "LevelSetFunction::stationarity: vector of the wrong dimension");
+  return root_->stationarity(x, g);
+}
+
+Eigen::MatrixXd LevelSetFunction::step_normals(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                               const Eigen::Ref<const Eigen::VectorXd>& g) const {
+  MESHMORPH_CHECK(x.size() == dim_ && g.size() == dim_, "LevelSetFunction::step_normals: vector of the wrong dimension");
+  return root_->step_normals(x, g);
+}
+
 std::optional<Eigen::VectorXd> LevelSetFunction::closest_point(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   MESHMORPH_CHECK(x.size() == dim_, "LevelSetFunction::closest_point: point of the wrong dimension");
   if (!x.allFinite()) return std::nullopt;

@@ -261,12 +261,21 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
   std::vector<Eigen::Matrix<double, d, d>> P(slides_.size());
   std::vector<Eigen::Matrix<double, d, Eigen::Dynamic>> N(slides_.size());
   for (std::size_t k = 0; k < slides_.size(); ++k) {
-    N[k] = normals(slides_[k], x_);
+    // One surface: its level set says which normals bind the step (more at a crease it keeps to).
+    const SlideNode& s = slides_[k];
+    if (s.m == 1) N[k] = s.sigma[0]->step_normals(x_.col(s.node), out.gradient.segment<d>(s.first));
+    else N[k] = normals(s, x_);
     P[k] = Eigen::Matrix<double, d, d>::Identity() - N[k] * N[k].transpose();
   }
   const int* outer = H.outerIndexPtr();
   const int* inner = H.innerIndexPtr();
   double* values = H.valuePtr();
+  // The mean diagonal of a node held at a corner of a crease (no tangent left), taken before
+  // its rows and columns vanish.
+  std::vector<double> held_stiffness(slides_.size(), 0.0);
+  for (std::size_t k = 0; k < slides_.size(); ++k)
+    if (N[k].cols() == d)
+      for (int i = 0; i < d; ++i) held_stiffness[k] += values[slide_offsets_[k * d * d + static_cast<std::size_t>(i * d + i)]] / d;
   // Rows: the d rows of a slide node are consecutive in every column that holds them.
   const auto n_cols = static_cast<std::ptrdiff_t>(H.outerSize());
 #pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) schedule(static)
@@ -300,7 +309,7 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
     const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
     Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
-    for (int i = 0; i < s.m; ++i) {
+    for (int i = 0; i < s.m && N[k].cols() == s.m; ++i) {  // kept to a crease: its curvature is left out
       const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
       if (hs.allFinite()) K -= lambda[i] * P[k] * hs * P[k];
     }
@@ -308,12 +317,15 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, d, d>> eig(0.5 * (K + K.transpose()));
       K = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
     }
-    const double c = B.trace() > 0.0 ? B.trace() / (d - s.m) : 1.0;
+    const double c = N[k].cols() == d ? held_stiffness[k] : B.trace() > 0.0 ? B.trace() / static_cast<double>(d - N[k].cols()) : 1.0;
     B += K + c * N[k] * N[k].transpose();
     for (int l = 0; l < d; ++l)
       for (int i = 0; i < d; ++i) values[o[l * d + i]] = B(i, l);
   }
-  project_gradient(x_, out.gradient);
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    auto g = out.gradient.segment<d>(slides_[k].first);
+    g -= N[k] * (N[k].transpose() * g);
+  }
 }
 
 template <int d>
@@ -361,8 +373,18 @@ double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
   Assembly a;
   assembler_->assemble(*metric_, x, o, a);
   add_penalty(x, Want::Gradient, HessianMode::Projected, a);
+  // A node sliding on one surface counts the descent that surface allows: at a crease of a
+  // discrete surface, that of the facets' tangent cones (0 at a minimum on the crease, where
+  // the projection on the mean tangent plane is not).
+  double on_one = 0.0;
+  for (const SlideNode& s : slides_)
+    if (s.m == 1) {
+      auto g = a.gradient.segment<d>(s.first);
+      on_one += std::pow(s.sigma[0]->stationarity(x.col(s.node), g), 2);
+      g.setZero();
+    }
   project_gradient(x, a.gradient);
-  return a.gradient.norm();
+  return std::sqrt(a.gradient.squaredNorm() + on_one);
 }
 
 template <int d>

@@ -23,6 +23,8 @@ class LagrangeBasis {
   Eigen::VectorXd values(const Eigen::VectorXd& xi) const;
   /// G(a, k) = ∂N_a/∂ξ_k, an n × dim matrix.
   Eigen::MatrixXd gradients(const Eigen::VectorXd& xi) const;
+  /// H(a, k·dim + l) = ∂²N_a/∂ξ_k∂ξ_l, an n × dim² matrix (symmetric in k, l).
+  Eigen::MatrixXd hessians(const Eigen::VectorXd& xi) const;
 
  private:
   const ReferenceElement* ref_;

@@ -62,6 +62,9 @@ class LevelSetFunction {
   /// value is not finite (naming the node) or the mesh has no cells.
   LevelSetFunction(Mesh background, Eigen::VectorXd values);
 
+  /// A level set from a compiled node: for the builders of geometry/ (facet_surface.h).
+  LevelSetFunction(std::shared_ptr<const detail::LevelSetNode> root, int dim) : dim_(dim), root_(std::move(root)) {}
+
   int dim() const { return dim_; }
 
   /// σ(x); x has dim() entries.
@@ -84,6 +87,20 @@ class LevelSetFunction {
   /// NaN entries where σ has no second derivative from any side: a sphere's centre, a
   /// cylinder's axis, the torus's axis and core circle.
   Eigen::MatrixXd hessian(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// For x on the zero set, the steepest first-order descent of a function of gradient g
+  /// (dim() entries) along it: |g − (g·n)n| with n = ∇σ/|∇σ| where the zero set is smooth at
+  /// x; at a crease of a facet surface (facet_surface.h), the largest norm of the projection
+  /// of −g onto the tangent cone of one facet through x. 0 at a crease that g pushes x into
+  /// from every side: a minimum of the function on the zero set, though g is not normal.
+  double stationarity(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g) const;
+
+  /// For x on the zero set, an orthonormal basis (dim() × k) of the normals that a step of a
+  /// node at x minimising a function of gradient g must stay orthogonal to: ∇σ/|∇σ| (k = 1),
+  /// except at a crease of a facet surface that g pushes x into from every side (stationarity
+  /// no larger than the descent along the crease), where the normals of every facet through x
+  /// (k = 2 on an edge in 3D: the step follows it; k = dim() at a corner: no step).
+  Eigen::MatrixXd step_normals(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g) const;
 
   /// The closest point p of the zero level set to x: σ(p) = 0 and x − p ∥ ∇σ(p) (or, at
   /// an edge or corner of a CSG, x − p in the span of the active operands' normals).

@@ -74,12 +74,20 @@ struct OptimizeResult {
 OptimizeResult optimize_mesh(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& fixed,
                              const std::vector<FitTerm>& slides, const OptimizeOptions& options, Eigen::MatrixXd& x);
 
-/// Sliding constraints for the boundary of a bare mesh (`--boundary slide`): the boundary
-/// facets whose nodes all lie on one plane (to 1e-10 of the mesh's size) are grouped by
-/// plane. A boundary node on one such plane slides on it, a node on two (3D) slides on their
-/// intersection line (a feature edge: any nonzero dihedral angle), and every other boundary
-/// node (corners, nodes of curved facets) is fixed in `fixed` (one flag per DOF). Returns one
-/// entry per plane that holds a sliding node.
-std::vector<FitTerm> planar_boundary_slides(const Mesh& mesh, const Topology& topology, std::vector<std::uint8_t>& fixed);
+/// Sliding constraints for boundary facets `facets` (indices into topology.facets; all of
+/// topology.boundary_facets for `--boundary slide`), on the input's own geometry. The facets
+/// form smooth patches: neighbours (across a corner edge in 3D, a corner in 2D) join when
+/// their outward normals at the joint differ by at most `feature_angle` degrees. A patch
+/// whose facets all lie on one plane (to 1e-10 of the mesh's size) slides on that plane;
+/// any other on its discrete surface, the union of its facets' polynomial maps frozen at
+/// mesh.x (geometry/facet_surface.h). A node of one patch slides on it, a node of two (3D,
+/// a feature curve) on both, so on their common curve, and every other node of the facets
+/// (corners, nodes of 3+ patches, of a crease inside one patch, or of two patches tangent
+/// there) is fixed. Sets the flags of those nodes in `fixed` (one per DOF: 0 for a sliding
+/// node, 1 for a fixed one) and returns one entry per patch that holds a sliding node.
+/// Without `curved` (`--boundary slide-planes`, MFEM's `-bnd`) only coplanar facets join and
+/// the nodes of curved facets are fixed: nodes slide on planes and on the lines where two meet.
+std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
+                                     double feature_angle, bool curved, std::vector<std::uint8_t>& fixed);
 
 }  // namespace meshmorph

@@ -28,6 +28,21 @@ class LevelSetNode {
   virtual Eigen::MatrixXd hessian(const Vec& x) const = 0;
   /// Closest point of the zero set. Default: the general iteration (closest_point.cpp).
   virtual std::optional<Vec> closest_point(const Vec& x) const;
+  /// The first-order descent of a function of gradient g along the zero set at x (on it).
+  /// Default: |g − (g·n)n| with n = ∇σ/|∇σ|, for a zero set smooth at x.
+  virtual double stationarity(const Vec& x, const Vec& g) const {
+    Vec n;
+    value_gradient(x, n);
+    n.normalize();
+    return (g - n * n.dot(g)).norm();
+  }
+  /// The normals (d × k, orthonormal) that a step of a node at x on the zero set must stay
+  /// orthogonal to, given the gradient g of the energy there. Default: ∇σ/|∇σ|.
+  virtual Eigen::MatrixXd step_normals(const Vec& x, const Vec& /*g*/) const {
+    Vec n;
+    value_gradient(x, n);
+    return n.normalized();
+  }
   /// The smooth pieces whose zero sets make up this one's (itself, for a leaf).
   virtual void collect_leaves(std::vector<const LevelSetNode*>& leaves) const { leaves.push_back(this); }
 };

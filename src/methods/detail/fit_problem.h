@@ -26,7 +26,9 @@ namespace meshmorph {
 /// block gets c N Nᵀ (c its mean tangential diagonal, so the normal step is exactly 0) plus
 /// the constraint curvature −Σ λ_i P ∇²σ_i P with g = Σ λ_i ∇σ_i + P g (the Hessian of the
 /// Lagrangian on the tangent space; PSD-clamped in Projected mode). Trial points are
-/// projected back onto the constraints by Gauss–Newton (minimal-norm corrections).
+/// projected back onto the constraints by Gauss–Newton (minimal-norm corrections). A node on
+/// one level set takes N and its share of |∇F| from it (step_normals, stationarity): ∇σ and
+/// |P g| but at the creases of a facet surface (geometry/facet_surface.h).
 template <int d>
 class FitProblem final : public NewtonProblem {
  public:

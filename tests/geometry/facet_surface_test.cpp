@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: MIT
+// facet_surface: closest points on the bottom facets of a structured mesh, flat (exact
+// answers) and bent into the paraboloid (parabola in 2D) z = c|x|², which P2 and P3 facets
+// reproduce exactly, so the discrete surface is smooth there and σ is a signed distance
+// whose derivatives differences can check.
+#include "meshmorph/geometry/facet_surface.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "geometry/level_set_fixtures.h"
+#include "meshmorph/fem/lagrange_basis.h"
+#include "meshmorph/fem/structured.h"
+#include "meshmorph/fem/trace.h"
+
+namespace meshmorph {
+namespace {
+
+constexpr double bend = 0.4;  // c of z = c|x|²: radius of curvature ≥ 1.25, far beyond the test points' 0.05
+
+struct Case {
+  ElementType type;
+  int order;
+};
+
+std::string name(const testing::TestParamInfo<Case>& i) {
+  return std::string(name_of(i.param.type)) + "_p" + std::to_string(i.param.order);
+}
+
+// The structured mesh, bent (or not), and its "bottom" facets (last coordinate 0 before bending).
+struct Bottom {
+  Mesh mesh;
+  Topology topology;
+  std::vector<std::int32_t> facets;
+};
+
+Bottom bottom(const Case& c, bool bent) {
+  Bottom b{structured_mesh(c.type, c.order, 3), {}, {}};
+  const int d = b.mesh.dim;
+  b.topology = build_topology(b.mesh);
+  for (std::int32_t f : b.topology.boundary_facets) {
+    const CellFacet cf = b.topology.facets[static_cast<std::size_t>(f)][0];
+    const auto [blk, cell] = b.topology.locate(cf.cell);
+    bool on = true;
+    for (std::int32_t n : facet_nodes(b.mesh.cells[blk], cell, cf.local)) on = on && std::abs(b.mesh.x(d - 1, n)) < 1e-12;
+    if (on) b.facets.push_back(f);
+  }
+  if (bent)
+    for (Eigen::Index i = 0; i < b.mesh.x.cols(); ++i) b.mesh.x(d - 1, i) += bend * b.mesh.x.col(i).head(d - 1).squaredNorm();
+  return b;
+}
+
+// Random points 0.05–0.15 above and below the bottom (bent or not), their foot in
+// [0.2, 0.8]^(d−1), away from the rim.
+std::vector<Eigen::VectorXd> points(int d, bool bent, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.2, 0.8), h(0.05, 0.15);
+  std::vector<Eigen::VectorXd> out;
+  for (int i = 0; i < 12; ++i) {
+    Eigen::VectorXd x(d);
+    for (int k = 0; k + 1 < d; ++k) x[k] = u(rng);
+    x[d - 1] = (bent ? bend * x.head(d - 1).squaredNorm() : 0.0) + (i % 2 ? 1.0 : -1.0) * h(rng);
+    out.push_back(x);
+  }
+  return out;
+}
+
+class FacetSurfaceFlat : public testing::TestWithParam<Case> {};
+
+// A piece of a plane: the foot is the orthogonal projection to rounding, σ = −z (the outward
+// normal of the bottom is −e_z), and a point of the surface is its own foot.
+TEST_P(FacetSurfaceFlat, ClosestPointIsTheProjection) {
+  const Bottom b = bottom(GetParam(), false);
+  const int d = b.mesh.dim;
+  const LevelSetFunction sigma = facet_surface(b.mesh, b.topology, b.facets);
+  for (const Eigen::VectorXd& x : points(d, false, 3)) {
+    Eigen::VectorXd p = x;
+    p[d - 1] = 0.0;
+    test::expect_closest_point(sigma, x, p, 1e-14);
+    EXPECT_NEAR(sigma.value(x), -x[d - 1], 1e-14);
+    EXPECT_LE((sigma.gradient(x) + Eigen::VectorXd::Unit(d, d - 1)).norm(), 1e-13);
+    EXPECT_LE((sigma.hessian(x)).norm(), 1e-12);
+    EXPECT_LE((*sigma.closest_point(p) - p).norm(), 1e-14);
+  }
+  // Beyond the rim x = 1 (off the patch): the foot is on the rim, σ the tangent-plane continuation.
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(d, 0.5);
+  x[0] = 1.2;
+  x[d - 1] = 0.1;
+  Eigen::VectorXd p = x;
+  p[0] = 1.0;
+  p[d - 1] = 0.0;
+  test::expect_closest_point(sigma, x, p, 1e-14);
+  EXPECT_NEAR(sigma.value(x), -0.1, 1e-14);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFacets, FacetSurfaceFlat,
+                         testing::Values(Case{ElementType::Triangle, 1}, Case{ElementType::Triangle, 3},
+                                         Case{ElementType::Quadrilateral, 2}, Case{ElementType::Tetrahedron, 1},
+                                         Case{ElementType::Tetrahedron, 2}, Case{ElementType::Tetrahedron, 3},
+                                         Case{ElementType::Hexahedron, 1}, Case{ElementType::Hexahedron, 2},
+                                         Case{ElementType::Hexahedron, 3}),
+                         name);
+
+class FacetSurfaceCurved : public testing::TestWithParam<Case> {};
+
+// The foot against the nearest of a 400-per-direction sampling of every facet: never
+// farther (up to rounding), and closer by at most the sampling's error (spacing² · curvature).
+TEST_P(FacetSurfaceCurved, ClosestPointMatchesAFineSampling) {
+  const Bottom b = bottom(GetParam(), true);
+  const int d = b.mesh.dim;
+  const LevelSetFunction sigma = facet_surface(b.mesh, b.topology, b.facets);
+  std::vector<Eigen::VectorXd> samples;
+  const int k = d == 2 ? 4000 : 400;
+  for (std::int32_t f : b.facets) {
+    const CellFacet cf = b.topology.facets[static_cast<std::size_t>(f)][0];
+    const auto [blk, cell] = b.topology.locate(cf.cell);
+    const CellBlock& block = b.mesh.cells[blk];
+    const ElementType ft = facet_type(block.type, cf.local);
+    const LagrangeBasis& basis = lagrange_basis(ft, block.order);
+    const Eigen::MatrixXd X = b.mesh.x(Eigen::all, facet_nodes(block, cell, cf.local));
+    for (int j = 0; j <= (d == 2 ? 0 : k); ++j)
+      for (int i = 0; i <= k; ++i) {
+        Eigen::VectorXd u(d - 1);
+        if (d == 2) u << -1.0 + 2.0 * i / k;
+        else if (ft == ElementType::Triangle) {
+          if (i + j > k) continue;
+          u << double(i) / k, double(j) / k;
+        } else {
+          u << -1.0 + 2.0 * i / k, -1.0 + 2.0 * j / k;
+        }
+        samples.push_back(X * basis.values(u));
+      }
+  }
+  for (const Eigen::VectorXd& x : points(d, true, 4)) {
+    const Eigen::VectorXd p = *sigma.closest_point(x);
+    double sampled = std::numeric_limits<double>::infinity();
+    for (const Eigen::VectorXd& s : samples) sampled = std::min(sampled, (s - x).norm());
+    const double found = (p - x).norm();
+    EXPECT_LE(found, sampled + 1e-14) << x.transpose();
+    EXPECT_GE(found, sampled - 1e-5) << x.transpose();
+    EXPECT_NEAR(std::abs(sigma.value(x)), found, 1e-15);
+    // On the paraboloid, and x − p along its normal there (the first-order condition).
+    EXPECT_NEAR(p[d - 1], bend * p.head(d - 1).squaredNorm(), 1e-14);
+    EXPECT_LE(test::tangential_residual(sigma, x, p), 1e-13);
+    EXPECT_LE(std::abs(sigma.value(p)), 1e-14);
+  }
+}
+
+// ∇σ and ∇²σ against differences (level_set_fixtures.h: five points, step 1e-4); the points
+// lie 0.05–0.15 from the surface, far from its medial axis (curvature radius ≥ 1.25).
+TEST_P(FacetSurfaceCurved, DerivativesMatchDifferences) {
+  const Bottom b = bottom(GetParam(), true);
+  const LevelSetFunction sigma = facet_surface(b.mesh, b.topology, b.facets);
+  for (const Eigen::VectorXd& x : points(b.mesh.dim, true, 5)) {
+    test::expect_gradient_matches_fd(sigma, x, 1e-9);
+    const Eigen::MatrixXd H = sigma.hessian(x);
+    EXPECT_LE((H - H.transpose()).norm(), 1e-14);
+    test::expect_hessian_matches_fd([&](const Eigen::VectorXd& y) { return sigma.gradient(y); }, x, H, 1e-4, 1e-8);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(CurvedFacets, FacetSurfaceCurved,
+                         testing::Values(Case{ElementType::Triangle, 2}, Case{ElementType::Quadrilateral, 3},
+                                         Case{ElementType::Tetrahedron, 2}, Case{ElementType::Tetrahedron, 3},
+                                         Case{ElementType::Hexahedron, 2}, Case{ElementType::Hexahedron, 3}),
+                         name);
+
+}  // namespace
+}  // namespace meshmorph
