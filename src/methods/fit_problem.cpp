@@ -17,7 +17,7 @@ namespace meshmorph {
 template <int d>
 FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
                           const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
-                          const std::vector<FitTerm>& slides)
+                          const std::vector<FitTerm>& slides, bool matrix_free)
     : mesh_(&mesh), terms_(&terms), options_(options), x_(x) {
   targets_ = build_targets<d>(mesh, x, options.target, options.quadrature_degree, options.quadrature);
   dofs_ = DofMap::from_mask(d, fixed);
@@ -40,7 +40,7 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
   slide_of_row_.assign(dofs_.n_free(), -1);
   for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_row_[static_cast<std::size_t>(slides_[k].first)] = static_cast<std::int32_t>(k);
   MESHMORPH_CHECK(project_slides(x_), "FitProblem: a slide node cannot be projected onto its surface");
-  assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_);
+  assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_, !matrix_free);
   metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
   min_det0_ = min_det(x);
 }
@@ -328,6 +328,27 @@ void FitProblem<d>::evaluate(HessianMode mode, Assembly& out) {
   if (!std::isfinite(out.value)) return;
   add_penalty(x_, Want::Hessian, mode, out);
   if (!slides_.empty()) constrain_hessian(mode, out);
+}
+
+template <int d>
+void FitProblem<d>::evaluate_action(HessianMode mode, Assembly& out) {
+  MESHMORPH_CHECK(terms_->empty() && slides_.empty(), "FitProblem: the matrix-free Hessian has no fitted or slide nodes");
+  AssemblyOptions o;
+  o.want = Want::Gradient;
+  o.threads = options_.threads;
+  assembler_->assemble(*metric_, x_, o, out);
+  if (std::isfinite(out.value) && !assembler_->prepare_hessian(*metric_, x_, mode, options_.threads, action_))
+    out.value = std::numeric_limits<double>::infinity();
+}
+
+template <int d>
+void FitProblem<d>::apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+  assembler_->apply_hessian(action_, v, y, options_.threads);
+}
+
+template <int d>
+Eigen::VectorXd FitProblem<d>::hessian_diagonal() {
+  return assembler_->hessian_diagonal(action_, options_.threads);
 }
 
 template <int d>

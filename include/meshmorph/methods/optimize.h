@@ -13,6 +13,20 @@
 
 namespace meshmorph {
 
+/// How optimize solves for its Newton steps.
+enum class OptimizeSolver {
+  Auto,        ///< MatrixFree from k_optimize_matrix_free_dofs free DOFs up without slides, else Cholesky
+  Cholesky,    ///< the assembled Hessian factored by CHOLMOD
+  Iterative,   ///< the assembled Hessian, CG with smoothed-aggregation AMG
+  /// No matrix: the Hessian's action per quadrature point, Jacobi-preconditioned CG to an
+  /// Eisenstat–Walker tolerance (newton_matrix_free; MFEM's partial assembly). Not with
+  /// sliding nodes: those runs take Cholesky.
+  MatrixFree,
+};
+
+/// Free DOFs from which OptimizeSolver::Auto takes MatrixFree (bench/README.md).
+inline constexpr std::size_t k_optimize_matrix_free_dofs = 50000;
+
 /// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
 /// mesh-optimizer runs of docs/optimize.md.
 struct OptimizeOptions {
@@ -33,7 +47,7 @@ struct OptimizeOptions {
   /// min det A stays above det_floor · its initial value; 0: det A > 0 only, as TMOP (the
   /// barrier of μ keeps elements from collapsing; a floor would stall meshes that must thin one)
   double det_floor = 0.0;
-  LinearSolverKind solver = LinearSolverKind::Auto;
+  OptimizeSolver solver = OptimizeSolver::Auto;
   int threads = 0;  ///< OpenMP threads; 0 = optimize_threads(0, DOFs)
 };
 
@@ -55,11 +69,12 @@ struct OptimizeIteration {
 struct OptimizeResult {
   bool converged = false;
   std::string message;
-  long long newton = 0, linear = 0;
+  long long newton = 0, linear = 0;  ///< linear: solves, or CG iterations when matrix-free
   double energy0 = 0.0, energy = 0.0;  ///< F before and after
   double min_det0 = 0.0, min_det = 0.0;
   double mu_min = 0.0, mu_mean = 0.0, mu_max = 0.0;  ///< over the quadrature points, after
   int quadrature_degree = 0;  ///< the degree used (0: each block's metric_quadrature_degree)
+  std::string solver;         ///< "cholmod", "cg-amg" or "matrix-free": what solved the steps
   std::vector<OptimizeIteration> history;
 };
 

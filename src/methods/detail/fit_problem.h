@@ -27,12 +27,17 @@ namespace meshmorph {
 /// the constraint curvature −Σ λ_i P ∇²σ_i P with g = Σ λ_i ∇σ_i + P g (the Hessian of the
 /// Lagrangian on the tangent space; PSD-clamped in Projected mode). Trial points are
 /// projected back onto the constraints by Gauss–Newton (minimal-norm corrections).
+///
+/// Matrix-free (evaluate_action(), for newton_matrix_free()): the metric Hessian as an
+/// operator (EnergyAssembler::prepare_hessian), without fitted nodes or slides (throws
+/// std::invalid_argument otherwise). Constructed with `matrix_free`, the problem holds no
+/// sparse pattern and evaluate() throws.
 template <int d>
-class FitProblem final : public NewtonProblem {
+class FitProblem final : public MatrixFreeNewtonProblem {
  public:
   FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
              const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
-             const std::vector<FitTerm>& slides = {});
+             const std::vector<FitTerm>& slides = {}, bool matrix_free = false);
 
   std::size_t n_free() const { return dofs_.n_free(); }
   const Eigen::MatrixXd& state() const { return x_; }
@@ -63,6 +68,9 @@ class FitProblem final : public NewtonProblem {
   double trial_value(const Eigen::VectorXd& p, double alpha) override;
   bool admissible(const Eigen::VectorXd& p, double alpha) override;
   void accept(const Eigen::VectorXd& p, double alpha) override;
+  void evaluate_action(HessianMode mode, Assembly& out) override;
+  void apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) override;
+  Eigen::VectorXd hessian_diagonal() override;
 
  private:
   void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
@@ -89,6 +97,7 @@ class FitProblem final : public NewtonProblem {
   DofMap dofs_;
   std::unique_ptr<EnergyAssembler<d>> assembler_;
   std::unique_ptr<Metric<d>> metric_;
+  HessianAction<d> action_;  // of the last evaluate_action()
   // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
   // the Hessian's value array, −1 for a fixed DOF.
   std::vector<std::int64_t> block_offsets_;
