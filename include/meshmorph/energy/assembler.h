@@ -42,6 +42,15 @@ struct Assembly {
 template <int d>
 struct HessianAction {
   std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d⁴
+  /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
+  /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
+  /// or rule that does not factor).
+  struct Tensor {
+    int P = 0, m = 0;                 ///< 1D nodes, 1D points
+    Eigen::MatrixXd B, D;             ///< m × P: l_i(x_q), l_i'(x_q)
+    std::vector<std::int32_t> node;   ///< local node of lattice index i + P(j + P k)
+  };
+  std::vector<Tensor> tensor;
 };
 
 /// Assembles the energy Σ_e ω_e E_e of a metric over all cells of a mesh, with its gradient
@@ -83,8 +92,8 @@ class EnergyAssembler {
                        HessianAction<d>& out) const;
   /// y = H v for the Hessian H over the free DOFs that `action` holds: the product of
   /// assemble()'s Hessian and v to rounding, element by element
-  /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ), coloured as assemble(), so bit-for-bit the same
-  /// for any thread count. `v` and `y` have n_free entries.
+  /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ; sum factorization on hexahedra), coloured as
+  /// assemble(), so bit-for-bit the same for any thread count. `v` and `y` have n_free entries.
   void apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
                      int threads = 0) const;
   /// The diagonal of that H, without forming H: H_ii = Σ_q Σ_jm ∂_j N_a K_q(k + dj, k + dm) ∂_m N_a
