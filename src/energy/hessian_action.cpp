@@ -16,8 +16,31 @@ namespace meshmorph {
 namespace {
 
 constexpr int k_sq(int d) { return d * d; }
+// Entries of a symmetric dd × dd matrix packed by rows of its upper triangle.
+constexpr int k_packed(int dd) { return dd * (dd + 1) / 2; }
+
+// h = K g for K packed as k_packed(dd): K is read once, which bounds a matrix-free product (the
+// K of every point are the bulk of its memory traffic).
+template <int dd>
+inline void packed_product(const double* K, const double* g, double* h) {
+  for (int i = 0; i < dd; ++i) h[i] = 0.0;
+  for (int i = 0, o = 0; i < dd; ++i) {
+    h[i] += K[o++] * g[i];
+    for (int j = i + 1; j < dd; ++j, ++o) {
+      h[i] += K[o] * g[j];
+      h[j] += K[o] * g[i];
+    }
+  }
+}
+
+// Entry (i, j), i ≤ j, of a packed dd × dd matrix.
+constexpr int packed_index(int dd, int i, int j) { return i * dd - i * (i - 1) / 2 + (j - i); }
 
 int threads_of(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
+
+// Cells per dense product of apply_hessian: 16 cells give the products 3·16 rows in 3D, enough
+// for the blocked kernel to amortise the packing of ∇N.
+constexpr int k_batch = 16;
 
 // The 1D factors of a hexahedral block: its nodes on a lattice of P coordinates per direction,
 // its points the tensor rule (x fastest), ∂N_a/∂ξ = l_i'(ξ) l_j(η) l_k(ζ) and so on. Checked
@@ -96,8 +119,10 @@ struct HexScratch {
 // the three components at the m³ points in three 1D passes (x, y, then z: O(m P³ + m² P² + m³ P)
 // instead of O(m³ P³)), K_q point by point, and the transposed passes back. u and y: the nodal
 // values in lattice order, component fastest.
+// P_ and m_ > 0 fix P and m at compile time (the loops unroll), 0 reads them from t.
+template <int P_, int m_>
 void hex_action(const HessianAction<3>::Tensor& t, const double* K, HexScratch& s) {
-  const int P = t.P, m = t.m;
+  const int P = P_ > 0 ? P_ : t.P, m = m_ > 0 ? m_ : t.m;
   const auto B = [&](int q, int i) { return t.B(q, i); };
   const auto D = [&](int q, int i) { return t.D(q, i); };
   s.A0.assign(static_cast<std::size_t>(3 * m * P * P), 0.0);
@@ -140,7 +165,8 @@ void hex_action(const HessianAction<3>::Tensor& t, const double* K, HexScratch& 
           for (int k = 0; k < 3; ++k) g[k] += b * s.C10[o + k], g[3 + k] += b * s.C01[o + k], g[6 + k] += dd * s.C00[o + k];
         }
         const int q = qx + m * (qy + m * qz);
-        const Eigen::Matrix<double, 9, 1> h = Eigen::Map<const Eigen::Matrix<double, 9, 9>>(K + 81 * q) * g;
+        Eigen::Matrix<double, 9, 1> h;
+        packed_product<9>(K + k_packed(9) * q, g.data(), h.data());
         for (int iz = 0; iz < P; ++iz) {
           const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
           const double b = B(qz, iz), dd = D(qz, iz);
@@ -174,6 +200,16 @@ void hex_action(const HessianAction<3>::Tensor& t, const double* K, HexScratch& 
       }
 }
 
+// The hex_action for t's sizes: compiled for the Lobatto rules of orders 1–4 (m = p + 2).
+using HexKernel = void (*)(const HessianAction<3>::Tensor&, const double*, HexScratch&);
+HexKernel hex_kernel(const HessianAction<3>::Tensor& t) {
+  if (t.P == 2 && t.m == 3) return hex_action<2, 3>;
+  if (t.P == 3 && t.m == 4) return hex_action<3, 4>;
+  if (t.P == 4 && t.m == 5) return hex_action<4, 5>;
+  if (t.P == 5 && t.m == 6) return hex_action<5, 6>;
+  return hex_action<0, 0>;
+}
+
 }  // namespace
 
 template <int d>
@@ -192,7 +228,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     const ShapeTable& table = *bt.table;
     const int n = block.n_nodes_per_cell(), Q = bt.n_points();
     std::vector<double>& K = out.K[bi];
-    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * dd * dd);
+    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * k_packed(dd));
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
@@ -215,8 +251,10 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
         for (int j = 0; j < d; ++j)
           for (int m = 0; m < d; ++m)
             for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = t[q].W_inv(j, m);
-        Eigen::Map<Hess>(K.data() + (static_cast<std::size_t>(c) * Q + q) * dd * dd).noalias() =
-            t[q].weight * (M * Hq * M.transpose());
+        const Hess Kq = t[q].weight * (M * Hq * M.transpose());
+        double* packed = K.data() + (static_cast<std::size_t>(c) * Q + q) * k_packed(dd);
+        for (int i = 0; i < dd; ++i)
+          for (int j = i; j < dd; ++j) *packed++ = 0.5 * (Kq(i, j) + Kq(j, i));
       }
     }
   }
@@ -233,7 +271,7 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
   const std::int32_t* red = dofs_->reduced_index().data();
 #pragma omp parallel num_threads(threads_of(threads))
   {
-    Eigen::Matrix<double, d, Eigen::Dynamic> V, R, Y;
+    Eigen::MatrixXd V, R, Y;
     HexScratch hex;
     for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
       const CellBlock& block = mesh_->cells[bi];
@@ -241,49 +279,69 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
       const BlockPlan& plan = blocks_[bi];
       const int n = block.n_nodes_per_cell(), Q = targets_->blocks[bi].n_points();
       const double* K = action.K[bi].data();
-      V.resize(d, n);
+      const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * k_packed(dd); };
       // Patches of one colour share no node (assemble()): their scatters never collide.
       for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
 #pragma omp for schedule(dynamic, 1)
-        for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p)
-          for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
-            const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
-            const std::int32_t* nodes = block.cell(c);
-            const double* Kc = K + c * static_cast<std::size_t>(Q) * dd * dd;
-            if constexpr (d == 3) {
-              if (const auto& t = action.tensor[bi]; t.P > 0) {
+        for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p) {
+          if constexpr (d == 3) {
+            if (const auto& t = action.tensor[bi]; t.P > 0) {
+              for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+                const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+                const std::int32_t* nodes = block.cell(c);
                 hex.u.resize(static_cast<std::size_t>(3 * n));
                 for (int l = 0; l < n; ++l)
                   for (int k = 0; k < 3; ++k) {
                     const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k];
                     hex.u[static_cast<std::size_t>(3 * l + k)] = r >= 0 ? v[r] : 0.0;
                   }
-                hex_action(t, Kc, hex);
+                hex_kernel(t)(t, K_of(c), hex);
                 for (int l = 0; l < n; ++l)
                   for (int k = 0; k < 3; ++k)
                     if (const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k]; r >= 0)
                       y[r] += hex.y[static_cast<std::size_t>(3 * l + k)];
-                continue;
               }
+              continue;
             }
-            for (int a = 0; a < n; ++a)
-              for (int k = 0; k < d; ++k) {
-                const std::int32_t r = red[d * nodes[a] + k];
-                V(k, a) = r >= 0 ? v[r] : 0.0;
-              }
-            // One product over all points for the reference gradients G_q = V ∇N_q (the
-            // column blocks of R), K_q applied in place, one product back.
+          }
+          // Dense: the cells of a patch k_batch at a time, their nodal values stacked as the d·b
+          // rows of V, so that one product R = V ∇N over all points (the reference gradients
+          // G_q of cell e in rows d·e .. d·e + d − 1, column block q) and one back share the
+          // packing of ∇N; K_q applied per cell and point in between.
+          for (std::int32_t first = plan.patch_offset[p]; first < plan.patch_offset[p + 1]; first += k_batch) {
+            const int b = std::min<int>(k_batch, plan.patch_offset[p + 1] - first);
+            const auto cell_of = [&](int e) { return static_cast<std::size_t>(plan.order[static_cast<std::size_t>(first + e)]); };
+            V.resize(d * b, n);
+            for (int e = 0; e < b; ++e) {
+              const std::int32_t* nodes = block.cell(cell_of(e));
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k) {
+                  const std::int32_t r = red[d * nodes[a] + k];
+                  V(d * e + k, a) = r >= 0 ? v[r] : 0.0;
+                }
+            }
             R.noalias() = V * dN;
-            for (int q = 0; q < Q; ++q) {
-              Eigen::Map<Eigen::Matrix<double, dd, 1>> g(R.data() + q * dd);
-              const Eigen::Matrix<double, dd, 1> s = Eigen::Map<const Eigen::Matrix<double, dd, dd>>(Kc + q * dd * dd) * g;
-              g = s;
+            for (int e = 0; e < b; ++e) {
+              const double* Kc = K_of(cell_of(e));
+              for (int q = 0; q < Q; ++q) {
+                Eigen::Matrix<double, dd, 1> g;
+                for (int j = 0; j < d; ++j)
+                  for (int k = 0; k < d; ++k) g[k + d * j] = R(d * e + k, q * d + j);
+                Eigen::Matrix<double, dd, 1> h;
+                packed_product<dd>(Kc + q * k_packed(dd), g.data(), h.data());
+                for (int j = 0; j < d; ++j)
+                  for (int k = 0; k < d; ++k) R(d * e + k, q * d + j) = h[k + d * j];
+              }
             }
             Y.noalias() = R * dN.transpose();
-            for (int a = 0; a < n; ++a)
-              for (int k = 0; k < d; ++k)
-                if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += Y(k, a);
+            for (int e = 0; e < b; ++e) {
+              const std::int32_t* nodes = block.cell(cell_of(e));
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k)
+                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += Y(d * e + k, a);
+            }
           }
+        }
       }
     }
   }
@@ -308,15 +366,16 @@ Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& act
         for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
           const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
           const std::int32_t* nodes = block.cell(c);
-          const double* Kc = K + c * static_cast<std::size_t>(Q) * dd * dd;
+          const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
           for (int a = 0; a < n; ++a) {
             Eigen::Matrix<double, d, 1> h = Eigen::Matrix<double, d, 1>::Zero();
             for (int q = 0; q < Q; ++q) {
-              const Eigen::Map<const Eigen::Matrix<double, dd, dd>> Kq(Kc + q * dd * dd);
+              const double* Kq = Kc + q * k_packed(dd);
               for (int j = 0; j < d; ++j)
                 for (int m = 0; m < d; ++m) {
                   const double w = table.dN(a, q * d + j) * table.dN(a, q * d + m);
-                  for (int k = 0; k < d; ++k) h[k] += w * Kq(k + d * j, k + d * m);
+                  for (int k = 0; k < d; ++k)
+                    h[k] += w * Kq[packed_index(dd, k + d * std::min(j, m), k + d * std::max(j, m))];
                 }
             }
             for (int k = 0; k < d; ++k)

@@ -38,10 +38,11 @@ struct Assembly {
 /// apply_hessian() needs per quadrature point, with no matrix. For point q of a cell,
 /// K_q = w_q (W_q⁻¹ ⊗ I) d²μ/dT²(T_q) (W_q⁻¹ ⊗ I)ᵀ (d² × d², column-major; d²μ/dT² PSD-projected
 /// in Projected mode), the second derivative of w_q μ with respect to the reference gradient
-/// G = X ∇N_q of the nodal map: T = G W⁻¹, so vec(T) = (W⁻ᵀ ⊗ I) vec(G). d⁴ doubles a point.
+/// G = X ∇N_q of the nodal map: T = G W⁻¹, so vec(T) = (W⁻ᵀ ⊗ I) vec(G). K_q is symmetric and
+/// stored packed: the rows of its upper triangle, d²(d² + 1)/2 doubles a point.
 template <int d>
 struct HessianAction {
-  std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d⁴
+  std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d²(d² + 1)/2
   /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
   /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
   /// or rule that does not factor).
