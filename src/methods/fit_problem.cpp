@@ -371,24 +371,43 @@ void FitProblem<d>::remember_current() {
 
 template <int d>
 double FitProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
+  admitted_ = {};
   if (!step_to(p, alpha, trial_)) return std::numeric_limits<double>::infinity();
   const double v = assembler_->value(*metric_, trial_, {}, options_.threads);
-  return std::isfinite(v) ? v + penalty_value(trial_) : v;
+  admitted_.alpha = alpha;
+  admitted_.energy = std::isfinite(v) ? v + penalty_value(trial_) : v;
+  return admitted_.energy;
 }
 
 template <int d>
 bool FitProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
+  Measured m = admitted_.alpha == alpha ? admitted_ : Measured{};  // F from trial_value() at this point
+  admitted_ = {};
   if (!step_to(p, alpha, trial_)) return false;
-  if (!(min_det(trial_) > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
-  if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;      // eq. 14
-  return gradient_norm(trial_) < options_.growth * gradient_norm_;  // §2.2
+  m.min_det = min_det(trial_);
+  if (!(m.min_det > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
+  if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;  // eq. 14
+  m.gradient_norm = gradient_norm(trial_);
+  if (!(m.gradient_norm < options_.growth * gradient_norm_)) return false;  // §2.2
+  if (m.alpha != alpha) m = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), m.min_det, m.gradient_norm};
+  m.admitted = true;
+  admitted_ = m;
+  return true;
 }
 
 template <int d>
 void FitProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
-  step_to(p, alpha, trial_);  // admissible() projected this very point
+  // newton() accepts the point that admissible() passed last: trial_ holds it, measured.
+  if (!(admitted_.admitted && admitted_.alpha == alpha)) {
+    step_to(p, alpha, trial_);
+    admitted_ = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), min_det(trial_),
+                 gradient_norm(trial_), true};
+  }
   x_.swap(trial_);
-  remember_current();
+  gradient_norm_ = admitted_.gradient_norm;
+  error_ = fit_error(x_);
+  current_ = admitted_;
+  admitted_ = {};
 }
 
 template class FitProblem<2>;

@@ -75,7 +75,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
     bool reached = false;
     no.on_step = [&](int step, double alpha) {
       const double g = P.current_gradient_norm();
-      result.history.push_back({step, alpha, P.energy(), g, P.min_det()});
+      result.history.push_back({step, alpha, P.accepted_energy(), g, P.accepted_min_det()});
       log_progress(format("optimize: Newton %d: F %.10g, |grad F| %.3g, alpha %.3g", step, result.history.back().energy, g, alpha));
       reached = g <= options.rtol * g0;
       return !reached;

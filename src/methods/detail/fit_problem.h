@@ -60,6 +60,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   void remember_current();
   /// |∇F| over the free DOFs at the iterate of the last remember_current().
   double current_gradient_norm() const { return gradient_norm_; }
+  /// F and min det A at the iterate of the last accept(), as the line search measured them.
+  double accepted_energy() const { return current_.energy; }
+  double accepted_min_det() const { return current_.min_det; }
   /// min, mean and max of μ(T) over the metric quadrature points of every cell at the
   /// current iterate (+∞ where a point is inverted).
   std::array<double, 3> metric_range() const;
@@ -105,6 +108,13 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   std::vector<SlideNode> slides_;
   std::vector<std::int32_t> slide_of_row_;  // reduced index of a slide node's first DOF → slot, else −1
   std::vector<std::int64_t> slide_offsets_;  // the d×d diagonal block of each slide node, as block_offsets_
+  // F, min det A and |∇F| at the point x + α p that trial_value() and admissible() measured
+  // (admitted_, in trial_; `admitted` once admissible() passed it) and at the accepted one.
+  struct Measured {
+    double alpha = -1.0, energy = 0.0, min_det = 0.0, gradient_norm = 0.0;
+    bool admitted = false;
+  };
+  Measured admitted_, current_;
   double min_det0_ = 0.0;
   double gradient_norm_ = 0.0, error_ = 0.0;  // at the current iterate, for the line search
   Eigen::MatrixXd x_, trial_;
