@@ -218,6 +218,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
   constexpr int dd = k_sq(d);
   using Hess = Eigen::Matrix<double, dd, dd>;
   out.K.resize(mesh_->cells.size());
+  out.element.resize(mesh_->cells.size());
   out.tensor.clear();
   for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi)
     out.tensor.push_back(tensor_factors<d>(mesh_->cells[bi], *targets_->blocks[bi].table));
@@ -228,8 +229,31 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     const ShapeTable& table = *bt.table;
     const int n = block.n_nodes_per_cell(), Q = bt.n_points();
     std::vector<double>& K = out.K[bi];
-    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * k_packed(dd));
+    std::vector<double>& E = out.element[bi];
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    if (is_simplex(block.type)) {
+      // Element matrices (component-major, as detail::element_kernel): on simplices (d·n)² is
+      // less than the per-point data and its products, e.g. 3600 against 46·45 + 2·3·20·138 for
+      // a P3 tetrahedron at degree 8.
+      K.clear();
+      E.resize(block.n_cells() * static_cast<std::size_t>(d * n * d * n));
+#pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
+      for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+        detail::NodalMatrix<d> X(d, n);
+        detail::ElementScratch<d> scratch;
+        const std::int32_t* nodes = block.cell(static_cast<std::size_t>(c));
+        for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+        const double e = detail::element_kernel<d>(metric, table, bt.cell(static_cast<std::size_t>(c)), X, Want::Hessian, mode, scratch);
+        if (!(e < std::numeric_limits<double>::infinity())) {
+          finite = 0;
+          continue;
+        }
+        std::copy(scratch.H.data(), scratch.H.data() + d * n * d * n, E.data() + static_cast<std::size_t>(c) * d * n * d * n);
+      }
+      continue;
+    }
+    E.clear();
+    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * k_packed(dd));
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       detail::NodalMatrix<d> X(d, n);
@@ -272,6 +296,7 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
 #pragma omp parallel num_threads(threads_of(threads))
   {
     Eigen::MatrixXd V, R, Y;
+    Eigen::VectorXd ue, ye;
     HexScratch hex;
     for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
       const CellBlock& block = mesh_->cells[bi];
@@ -303,6 +328,24 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
               }
               continue;
             }
+          }
+          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+            const int dn = d * n;
+            ue.resize(dn);
+            for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+              const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+              const std::int32_t* nodes = block.cell(c);
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k) {
+                  const std::int32_t r = red[d * nodes[a] + k];
+                  ue[k * n + a] = r >= 0 ? v[r] : 0.0;
+                }
+              ye.noalias() = Eigen::Map<const Eigen::MatrixXd>(E.data() + c * static_cast<std::size_t>(dn * dn), dn, dn) * ue;
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k)
+                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += ye[k * n + a];
+            }
+            continue;
           }
           // Dense: the cells of a patch k_batch at a time, their nodal values stacked as the d·b
           // rows of V, so that one product R = V ∇N over all points (the reference gradients
@@ -355,6 +398,7 @@ Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& act
   const std::int32_t* red = dofs_->reduced_index().data();
 #pragma omp parallel num_threads(threads_of(threads))
   for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+    Eigen::Matrix<double, d, Eigen::Dynamic> h;
     const CellBlock& block = mesh_->cells[bi];
     const ShapeTable& table = *targets_->blocks[bi].table;
     const BlockPlan& plan = blocks_[bi];
@@ -366,21 +410,34 @@ Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& act
         for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
           const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
           const std::int32_t* nodes = block.cell(c);
-          const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
-          for (int a = 0; a < n; ++a) {
-            Eigen::Matrix<double, d, 1> h = Eigen::Matrix<double, d, 1>::Zero();
-            for (int q = 0; q < Q; ++q) {
-              const double* Kq = Kc + q * k_packed(dd);
-              for (int j = 0; j < d; ++j)
-                for (int m = 0; m < d; ++m) {
-                  const double w = table.dN(a, q * d + j) * table.dN(a, q * d + m);
-                  for (int k = 0; k < d; ++k)
-                    h[k] += w * Kq[packed_index(dd, k + d * std::min(j, m), k + d * std::max(j, m))];
-                }
-            }
-            for (int k = 0; k < d; ++k)
-              if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) diagonal[r] += h[k];
+          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+            const std::size_t dn = static_cast<std::size_t>(d * n);
+            for (int a = 0; a < n; ++a)
+              for (int k = 0; k < d; ++k)
+                if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0)
+                  diagonal[r] += E[c * dn * dn + static_cast<std::size_t>(k * n + a) * (dn + 1)];
+            continue;
           }
+          const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
+          h.setZero(d, n);
+          for (int q = 0; q < Q; ++q) {
+            // The blocks K_q(k + dj, k + dm), j ≤ m, off-diagonal ones doubled (they appear twice).
+            const double* Kq = Kc + q * k_packed(dd);
+            double kk[d][d][d];
+            for (int k = 0; k < d; ++k)
+              for (int j = 0; j < d; ++j)
+                for (int m = j; m < d; ++m) kk[k][j][m] = (j == m ? 1.0 : 2.0) * Kq[packed_index(dd, k + d * j, k + d * m)];
+            const double* dNq = table.dN.data() + static_cast<std::ptrdiff_t>(q) * d * n;  // column q·d + j at j·n
+            for (int a = 0; a < n; ++a)
+              for (int j = 0; j < d; ++j)
+                for (int m = j; m < d; ++m) {
+                  const double w = dNq[j * n + a] * dNq[m * n + a];
+                  for (int k = 0; k < d; ++k) h(k, a) += w * kk[k][j][m];
+                }
+          }
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k)
+              if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) diagonal[r] += h(k, a);
         }
     }
   }

@@ -43,6 +43,9 @@ struct Assembly {
 template <int d>
 struct HessianAction {
   std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d²(d² + 1)/2
+  /// Per cell block of simplices instead of K: the element Hessians, n_cells × (d·n)²
+  /// (component-major local order k·n + a), fewer numbers and flops than K there.
+  std::vector<std::vector<double>> element;
   /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
   /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
   /// or rule that does not factor).
@@ -93,7 +96,8 @@ class EnergyAssembler {
                        HessianAction<d>& out) const;
   /// y = H v for the Hessian H over the free DOFs that `action` holds: the product of
   /// assemble()'s Hessian and v to rounding, element by element
-  /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ; sum factorization on hexahedra), coloured as
+  /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ, by sum factorization on hexahedra; H_e v_e on
+  /// simplices), coloured as
   /// assemble(), so bit-for-bit the same for any thread count. `v` and `y` have n_free entries.
   void apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
                      int threads = 0) const;
