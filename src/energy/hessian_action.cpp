@@ -33,6 +33,21 @@ inline void packed_product(const double* K, const double* g, double* h) {
   }
 }
 
+// h = K g for a packed symmetric n × n K (as packed_product, n at run time).
+inline void packed_product(const double* K, const double* g, double* h, int n) {
+  for (int i = 0; i < n; ++i) h[i] = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double gi = g[i];
+    double hi = h[i] + K[0] * gi;
+    for (int j = i + 1; j < n; ++j) {
+      hi += K[j - i] * g[j];
+      h[j] += K[j - i] * gi;
+    }
+    h[i] = hi;
+    K += n - i;
+  }
+}
+
 // Entry (i, j), i ≤ j, of a packed dd × dd matrix.
 constexpr int packed_index(int dd, int i, int j) { return i * dd - i * (i - 1) / 2 + (j - i); }
 
@@ -236,7 +251,8 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
       // less than the per-point data and its products, e.g. 3600 against 46·45 + 2·3·20·138 for
       // a P3 tetrahedron at degree 8.
       K.clear();
-      E.resize(block.n_cells() * static_cast<std::size_t>(d * n * d * n));
+      const int dn = d * n;
+      E.resize(block.n_cells() * static_cast<std::size_t>(k_packed(dn)));
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
       for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
         detail::NodalMatrix<d> X(d, n);
@@ -248,7 +264,9 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
           finite = 0;
           continue;
         }
-        std::copy(scratch.H.data(), scratch.H.data() + d * n * d * n, E.data() + static_cast<std::size_t>(c) * d * n * d * n);
+        double* packed = E.data() + static_cast<std::size_t>(c) * k_packed(dn);
+        for (int i = 0; i < dn; ++i)
+          for (int j = i; j < dn; ++j) *packed++ = scratch.H(i, j);  // exactly symmetric (complete_symmetric)
       }
       continue;
     }
@@ -332,6 +350,7 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
           if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
             const int dn = d * n;
             ue.resize(dn);
+            ye.resize(dn);
             for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
               const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
               const std::int32_t* nodes = block.cell(c);
@@ -340,7 +359,7 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
                   const std::int32_t r = red[d * nodes[a] + k];
                   ue[k * n + a] = r >= 0 ? v[r] : 0.0;
                 }
-              ye.noalias() = Eigen::Map<const Eigen::MatrixXd>(E.data() + c * static_cast<std::size_t>(dn * dn), dn, dn) * ue;
+              packed_product(E.data() + c * static_cast<std::size_t>(k_packed(dn)), ue.data(), ye.data(), dn);
               for (int a = 0; a < n; ++a)
                 for (int k = 0; k < d; ++k)
                   if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += ye[k * n + a];
@@ -411,11 +430,11 @@ Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& act
           const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
           const std::int32_t* nodes = block.cell(c);
           if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
-            const std::size_t dn = static_cast<std::size_t>(d * n);
+            const int dn = d * n;
             for (int a = 0; a < n; ++a)
               for (int k = 0; k < d; ++k)
                 if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0)
-                  diagonal[r] += E[c * dn * dn + static_cast<std::size_t>(k * n + a) * (dn + 1)];
+                  diagonal[r] += E[c * static_cast<std::size_t>(k_packed(dn)) + static_cast<std::size_t>(packed_index(dn, k * n + a, k * n + a))];
             continue;
           }
           const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);

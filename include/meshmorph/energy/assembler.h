@@ -43,8 +43,8 @@ struct Assembly {
 template <int d>
 struct HessianAction {
   std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d²(d² + 1)/2
-  /// Per cell block of simplices instead of K: the element Hessians, n_cells × (d·n)²
-  /// (component-major local order k·n + a), fewer numbers and flops than K there.
+  /// Per cell block of simplices instead of K: the element Hessians (component-major local
+  /// order k·n + a), packed as K_q, n_cells × d·n(d·n + 1)/2: fewer numbers and flops than K.
   std::vector<std::vector<double>> element;
   /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
   /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
