@@ -15,7 +15,10 @@ namespace meshmorph {
 
 /// How optimize solves for its Newton steps.
 enum class OptimizeSolver {
-  Auto,        ///< MatrixFree from k_optimize_matrix_free_dofs free DOFs up without slides, else Cholesky
+  /// Without slides, MatrixFree from k_optimize_matrix_free_dofs free DOFs up on meshes of
+  /// hexahedra (sum factorization) and from k_optimize_matrix_free_dofs_any up on any mesh;
+  /// else Cholesky (bench/README.md)
+  Auto,
   Cholesky,    ///< the assembled Hessian factored by CHOLMOD
   Iterative,   ///< the assembled Hessian, CG with smoothed-aggregation AMG
   /// No matrix: the Hessian's action per quadrature point, Jacobi-preconditioned CG to an
@@ -24,8 +27,12 @@ enum class OptimizeSolver {
   MatrixFree,
 };
 
-/// Free DOFs from which OptimizeSolver::Auto takes MatrixFree (bench/README.md).
+/// Free DOFs from which OptimizeSolver::Auto takes MatrixFree on hexahedral meshes: at 95k,
+/// 25 s against CHOLMOD's 44 s (fichq3_rs3_o2, bench/README.md).
 inline constexpr std::size_t k_optimize_matrix_free_dofs = 50000;
+/// The same on other meshes, where CHOLMOD is faster at 95k (escher_rs3_o2: 21 s against
+/// 37 s) but its factor reaches 4.3 GB at 311k, against 0.5 GB matrix-free.
+inline constexpr std::size_t k_optimize_matrix_free_dofs_any = 200000;
 
 /// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
 /// mesh-optimizer runs of docs/optimize.md.
