@@ -81,7 +81,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       const double ratio = norm / previous_norm;
       double next = krylov.gamma * ratio * ratio;
       if (krylov.gamma * forcing * forcing > 0.1) next = std::max(next, krylov.gamma * forcing * forcing);
-      forcing = std::clamp(next, options.linear_rtol, krylov.max_forcing);
+      forcing = std::clamp(next, krylov.min_forcing, krylov.max_forcing);
     }
     previous_norm = norm;
     CgResult cg = truncated_cg(problem, jacobi(problem.hessian_diagonal()), -a.gradient, forcing, krylov.max_iterations, p);
