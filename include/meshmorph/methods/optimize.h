@@ -28,10 +28,10 @@ enum class OptimizeSolver {
 };
 
 /// Free DOFs from which OptimizeSolver::Auto takes MatrixFree on hexahedral meshes: at 95k,
-/// 25 s against CHOLMOD's 44 s (fichq3_rs3_o2, bench/README.md).
+/// 17.7 s against CHOLMOD's 31.6 s (fichq3_rs3_o2, bench/README.md).
 inline constexpr std::size_t k_optimize_matrix_free_dofs = 50000;
-/// The same on other meshes, where CHOLMOD is faster at 95k (escher_rs3_o2: 21 s against
-/// 37 s) but its factor reaches 4.3 GB at 311k, against 0.5 GB matrix-free.
+/// The same on other meshes, where CHOLMOD is faster at 95k (escher_rs3_o2: 22.8 s against
+/// 26.8 s) but its factor reaches 4.3 GB at 311k, against 0.5 GB matrix-free.
 inline constexpr std::size_t k_optimize_matrix_free_dofs_any = 200000;
 
 /// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
