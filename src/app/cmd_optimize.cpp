@@ -32,7 +32,7 @@ namespace {
 
 struct OptimizeArgs {
   std::string input;  // a mesh or a case file (.json)
-  std::string output, report, metric, target, boundary;
+  std::string output, report, metric, target, boundary, solver;
 };
 
 struct OptimizeSettings {
@@ -58,13 +58,17 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   r.read("rtol", o.rtol, 0.0, 1.0);
   r.read("growth", o.growth, 1.0, 1e6);
   r.read("det_floor", o.det_floor, 0.0, 1.0);
-  r.read("solver", solver, {"auto", "cholesky", "iterative"});
+  r.read("solver", solver, {"auto", "cholesky", "iterative", "matrix-free"});
   r.finish();
   if (!a.metric.empty()) o.metric = a.metric;
   if (!a.target.empty()) target = a.target;
   if (!a.boundary.empty()) s.boundary = a.boundary;
+  if (!a.solver.empty()) solver = a.solver;
   o.target = target == "input" ? TargetKind::Input : TargetKind::Ideal;
-  o.solver = solver == "cholesky" ? LinearSolverKind::Cholesky : solver == "iterative" ? LinearSolverKind::Iterative : LinearSolverKind::Auto;
+  o.solver = solver == "cholesky"      ? OptimizeSolver::Cholesky
+             : solver == "iterative"   ? OptimizeSolver::Iterative
+             : solver == "matrix-free" ? OptimizeSolver::MatrixFree
+                                       : OptimizeSolver::Auto;
   o.threads = threads;
   return s;
 }
@@ -282,6 +286,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   extra["initial_inverted_elements"] = initial_inverted;
   extra["untangle_newton"] = untangle_newton;
   extra["slide_nodes"] = slide_nodes;
+  extra["solver"] = r.solver;
   extra["energy_initial"] = r.energy0;
   extra["energy_final"] = r.energy;
   extra["min_det_initial"] = r.min_det0;
@@ -297,7 +302,8 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
       << "mesh     " << d << "D, " << mesh.n_nodes() << " nodes, " << mesh.n_cells() << " cells, order " << mesh.order()
       << "; " << slide_nodes << " sliding nodes" << (initial_inverted ? "; " + std::to_string(initial_inverted) + " inverted, untangled first" : std::string())
       << "\n";
-  std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld linear solves\n", r.newton, r.linear);
+  std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld %s (%s)\n", r.newton, r.linear,
+                r.solver == "matrix-free" ? "CG iterations" : "linear solves", r.solver.empty() ? "none" : r.solver.c_str());
   out << line;
   std::snprintf(line, sizeof line, "quality  F %.6g -> %.6g; mu min/mean/max %.4g / %.4g / %.4g; min det J %.3g -> %.3g; inverted %zu\n",
                 r.energy0, r.energy, r.mu_min, r.mu_mean, r.mu_max, r.min_det0, r.min_det, q.inverted_elements);
@@ -320,6 +326,8 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   cmd->add_option("--boundary", args->boundary,
                   "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
       ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
+  cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free")
+      ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free"}));
   cmd->callback([args, &run, &threads] {
     run = [args, &threads](std::ostream& out) { return run_optimize(*args, threads, out); };
   });

@@ -69,7 +69,7 @@ double cell_value(const Metric<d>& metric, const BlockTargets<d>& bt, std::size_
 
 template <int d>
 EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, const TargetField<d>& targets,
-                                    const DofMap& dofs)
+                                    const DofMap& dofs, bool matrix)
     : mesh_(&mesh), targets_(&targets), dofs_(&dofs), n_cells_(mesh.n_cells()) {
   MESHMORPH_CHECK(mesh.dim == d, "EnergyAssembler: the mesh dimension differs from d");
   MESHMORPH_CHECK(dofs.dim() == d && dofs.n_nodes() == mesh.n_nodes(), "EnergyAssembler: the DofMap does not fit the mesh");
@@ -82,8 +82,11 @@ EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, 
                             mesh.cells[bi].n_cells() * static_cast<std::size_t>(targets.blocks[bi].n_points()),
                     "EnergyAssembler: the targets do not fit cell block " + std::to_string(bi));
   }
-  const detail::NodePattern pattern = detail::build_node_pattern(topology, dofs);
-  detail::reduced_hessian_pattern(topology, dofs, pattern, outer_, inner_);
+  detail::NodePattern pattern;
+  if (matrix) {
+    pattern = detail::build_node_pattern(topology, dofs);
+    detail::reduced_hessian_pattern(topology, dofs, pattern, outer_, inner_);
+  }
   blocks_.resize(mesh.cells.size());
   for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
     const CellBlock& block = mesh.cells[bi];
@@ -92,7 +95,7 @@ EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, 
     plan.color_offset = std::move(patches.color_offset);
     plan.patch_offset = std::move(patches.patch_offset);
     plan.order = std::move(patches.order);
-    plan.scatter = detail::scatter_offsets(block, topology, pattern);
+    if (matrix) plan.scatter = detail::scatter_offsets(block, topology, pattern);
   }
 }
 
@@ -108,6 +111,7 @@ void EnergyAssembler<d>::assemble(const Metric<d>& metric, const Eigen::MatrixXd
     return;
   }
   const bool hess = options.want == Want::Hessian;
+  MESHMORPH_CHECK(!hess || !outer_.empty(), "EnergyAssembler::assemble: built without a Hessian pattern (matrix-free)");
   const auto n_free = static_cast<Eigen::Index>(dofs_->n_free());
   out.element_values.assign(n_cells_, 0.0);
   out.gradient.setZero(n_free);

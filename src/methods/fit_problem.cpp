@@ -17,7 +17,7 @@ namespace meshmorph {
 template <int d>
 FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
                           const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
-                          const std::vector<FitTerm>& slides)
+                          const std::vector<FitTerm>& slides, bool matrix_free)
     : mesh_(&mesh), terms_(&terms), options_(options), x_(x) {
   targets_ = build_targets<d>(mesh, x, options.target, options.quadrature_degree, options.quadrature);
   dofs_ = DofMap::from_mask(d, fixed);
@@ -40,7 +40,7 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
   slide_of_row_.assign(dofs_.n_free(), -1);
   for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_row_[static_cast<std::size_t>(slides_[k].first)] = static_cast<std::int32_t>(k);
   MESHMORPH_CHECK(project_slides(x_), "FitProblem: a slide node cannot be projected onto its surface");
-  assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_);
+  assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_, !matrix_free);
   metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
   if (options.flat_edges) {
     std::vector<std::uint8_t> fitted(mesh.n_nodes(), 0);
@@ -366,6 +366,27 @@ void FitProblem<d>::evaluate(HessianMode mode, Assembly& out) {
 }
 
 template <int d>
+void FitProblem<d>::evaluate_action(HessianMode mode, Assembly& out) {
+  MESHMORPH_CHECK(terms_->empty() && slides_.empty(), "FitProblem: the matrix-free Hessian has no fitted or slide nodes");
+  AssemblyOptions o;
+  o.want = Want::Gradient;
+  o.threads = options_.threads;
+  assembler_->assemble(*metric_, x_, o, out);
+  if (std::isfinite(out.value) && !assembler_->prepare_hessian(*metric_, x_, mode, options_.threads, action_))
+    out.value = std::numeric_limits<double>::infinity();
+}
+
+template <int d>
+void FitProblem<d>::apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+  assembler_->apply_hessian(action_, v, y, options_.threads);
+}
+
+template <int d>
+Eigen::VectorXd FitProblem<d>::hessian_diagonal() {
+  return assembler_->hessian_diagonal(action_, options_.threads);
+}
+
+template <int d>
 double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
   AssemblyOptions o;
   o.want = Want::Gradient;
@@ -395,24 +416,43 @@ void FitProblem<d>::remember_current() {
 
 template <int d>
 double FitProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
+  admitted_ = {};
   if (!step_to(p, alpha, trial_)) return std::numeric_limits<double>::infinity();
   const double v = assembler_->value(*metric_, trial_, {}, options_.threads);
-  return std::isfinite(v) ? v + penalty_value(trial_) : v;
+  admitted_.alpha = alpha;
+  admitted_.energy = std::isfinite(v) ? v + penalty_value(trial_) : v;
+  return admitted_.energy;
 }
 
 template <int d>
 bool FitProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
+  Measured m = admitted_.alpha == alpha ? admitted_ : Measured{};  // F from trial_value() at this point
+  admitted_ = {};
   if (!step_to(p, alpha, trial_)) return false;
-  if (!(min_det(trial_) > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
-  if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;      // eq. 14
-  return gradient_norm(trial_) < options_.growth * gradient_norm_;  // §2.2
+  m.min_det = min_det(trial_);
+  if (!(m.min_det > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
+  if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;  // eq. 14
+  m.gradient_norm = gradient_norm(trial_);
+  if (!(m.gradient_norm < options_.growth * gradient_norm_)) return false;  // §2.2
+  if (m.alpha != alpha) m = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), m.min_det, m.gradient_norm};
+  m.admitted = true;
+  admitted_ = m;
+  return true;
 }
 
 template <int d>
 void FitProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
-  step_to(p, alpha, trial_);  // admissible() projected this very point
+  // newton() accepts the point that admissible() passed last: trial_ holds it, measured.
+  if (!(admitted_.admitted && admitted_.alpha == alpha)) {
+    step_to(p, alpha, trial_);
+    admitted_ = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), min_det(trial_),
+                 gradient_norm(trial_), true};
+  }
   x_.swap(trial_);
-  remember_current();
+  gradient_norm_ = admitted_.gradient_norm;
+  error_ = fit_error(x_);
+  current_ = admitted_;
+  admitted_ = {};
 }
 
 template class FitProblem<2>;

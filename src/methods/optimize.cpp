@@ -43,11 +43,23 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   fo.quadrature_degree = options.quadrature_degree > 0 ? options.quadrature_degree : default_quadrature_degree(mesh);
   fo.growth = options.growth;
   fo.det_floor = options.det_floor;
-  const auto n_fixed = static_cast<std::size_t>(std::count_if(fixed.begin(), fixed.end(), [](std::uint8_t f) { return f != 0; }));
-  fo.threads = optimize_threads(options.threads, fixed.size() - n_fixed);
+  const std::size_t n_free =
+      fixed.size() - static_cast<std::size_t>(std::count_if(fixed.begin(), fixed.end(), [](std::uint8_t f) { return f != 0; }));
+  fo.threads = optimize_threads(options.threads, n_free);
+  OptimizeSolver kind = options.solver;
+  if (kind == OptimizeSolver::Auto) {
+    const bool hexahedra = std::all_of(mesh.cells.begin(), mesh.cells.end(), [](const CellBlock& b) { return b.type == ElementType::Hexahedron; });
+    const bool large = n_free >= (hexahedra ? k_optimize_matrix_free_dofs : k_optimize_matrix_free_dofs_any);
+    kind = large ? OptimizeSolver::MatrixFree : OptimizeSolver::Cholesky;
+  }
+  if (kind == OptimizeSolver::MatrixFree && !slides.empty()) {
+    // CHOLMOD's memory grows too fast beyond 400k unknowns.
+    kind = n_free <= 400000 ? OptimizeSolver::Cholesky : OptimizeSolver::Iterative;
+    log_progress("optimize: the matrix-free solver does not handle sliding nodes yet; assembled Hessians instead");
+  }
   const std::vector<FitTerm> no_terms;
   OptimizeResult result;
-  FitProblem<d> P(mesh, topology, no_terms, fixed, fo, x, slides);
+  FitProblem<d> P(mesh, topology, no_terms, fixed, fo, x, slides, kind == OptimizeSolver::MatrixFree);
   result.min_det0 = result.min_det = P.min_det();
   MESHMORPH_CHECK(result.min_det0 > 0.0, "optimize: the input mesh must be valid");
   result.energy0 = result.energy = P.energy();
@@ -58,17 +70,6 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   bool converged = P.n_free() == 0 || g0 == 0.0;
   std::string why;
   if (!converged) {
-    LinearSolverOptions lo;
-    // Auto: CHOLMOD up to 400k unknowns. Measured on fichq3_rs3_o2 (95k DOFs, P2 hexahedra,
-    // ~375 Hessian entries per row; loaded 2-core machine): CHOLMOD 47 s and 1.0 GB for the
-    // run, CG-AMG 625 s and 2.3 GB, 83% of it in the Galerkin products of the smoothed
-    // prolongator, whose A·P has the pattern of A² on high-order Hessians. escher_rs3_o3 (311k):
-    // CHOLMOD 131 s, 4.4 GB.
-    lo.kind = options.solver == LinearSolverKind::Auto && P.n_free() <= 400000 ? LinearSolverKind::Cholesky : options.solver;
-    lo.block_size = d;
-    lo.dim = d;
-    lo.threads = fo.threads;
-    const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
     NewtonOptions no;
     no.exact_first = true;
     no.max_iterations = options.max_newton;
@@ -78,14 +79,32 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
     bool reached = false;
     no.on_step = [&](int step, double alpha) {
       const double g = P.current_gradient_norm();
-      result.history.push_back({step, alpha, P.energy(), g, P.min_det()});
+      result.history.push_back({step, alpha, P.accepted_energy(), g, P.accepted_min_det()});
       log_progress(format("optimize: Newton %d: F %.10g, |grad F| %.3g, alpha %.3g", step, result.history.back().energy, g, alpha));
       reached = g <= options.rtol * g0;
       return !reached;
     };
-    const NewtonStats s = newton(P, *solver, no, nullptr);
+    NewtonStats s;
+    if (kind == OptimizeSolver::MatrixFree) {
+      result.solver = "matrix-free";
+      s = newton_matrix_free(P, no);
+      result.linear = s.krylov_iterations;
+    } else {
+      LinearSolverOptions lo;
+      // Measured on fichq3_rs3_o2 (95k DOFs, P2 hexahedra, ~375 Hessian entries per row;
+      // loaded 2-core machine): CHOLMOD 47 s and 1.0 GB for the run, CG-AMG 625 s and 2.3 GB,
+      // 83% of it in the Galerkin products of the smoothed prolongator, whose A·P has the
+      // pattern of A² on high-order Hessians: assembled Hessians take CHOLMOD unless asked.
+      lo.kind = kind == OptimizeSolver::Iterative ? LinearSolverKind::Iterative : LinearSolverKind::Cholesky;
+      lo.block_size = d;
+      lo.dim = d;
+      lo.threads = fo.threads;
+      const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
+      result.solver = solver->name();
+      s = newton(P, *solver, no, nullptr);
+      result.linear = s.linear_solves;
+    }
     result.newton = s.iterations;
-    result.linear = s.linear_solves;
     converged = reached || s.converged;
     if (!converged) why = s.message;
   }

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "meshmorph/log.h"
+#include "solve/detail/line_search.h"
 
 namespace meshmorph {
 namespace {
@@ -120,18 +121,11 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       stats.message = "Newton reached its iteration limit";
       return stats;
     }
-    // Backtracking Armijo (c = options.armijo) on ∇E(x_k); never past a non-finite energy or
-    // an inadmissible point.
     double alpha = 1.0, trial = 0.0;
     const auto line_search = [&] {
-      alpha = 1.0;
-      const double slope = a.gradient.dot(p);
-      trial = problem.trial_value(p, alpha);
-      while (!(std::isfinite(trial) && trial <= a.value + options.armijo * alpha * slope && problem.admissible(p, alpha))) {
-        alpha *= options.backtrack;
-        if (alpha < options.min_step) break;
-        trial = problem.trial_value(p, alpha);
-      }
+      const detail::LineSearch s = detail::line_search(problem, a.value, a.gradient, p, options);
+      alpha = s.alpha;
+      trial = s.value;
     };
     line_search();
     // A short step after an inexact solve may be the solve's fault (stiff, thin elements

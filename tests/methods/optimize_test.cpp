@@ -319,5 +319,52 @@ TEST(OptimizeSlide, SphereSlidesOnItsOwnCurvedFacets) {
   }
 }
 
+// Matrix-free Newton (Jacobi-preconditioned CG on the Hessian's action) and CHOLMOD on the
+// assembled Hessian reach one minimiser: every node jittered, the boundary too, then fixed, so
+// the optimum is not the grid (F > 0 there).
+TEST(Optimize, MatrixFreeReachesTheMinimumOfCholesky) {
+  for (auto [type, order] : {std::pair{ElementType::Quadrilateral, 3}, std::pair{ElementType::Triangle, 2},
+                             std::pair{ElementType::Hexahedron, 2}, std::pair{ElementType::Tetrahedron, 2}}) {
+    SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+    const int n = 3;
+    Mesh mesh = structured_mesh(type, order, n);
+    const Topology topo = build_topology(mesh);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.1, 0.1);
+    for (Eigen::Index i = 0; i < mesh.x.size(); ++i) mesh.x(i) += u(rng) / (n * order);
+    ASSERT_EQ(count_invalid_cells(mesh), 0u);
+    OptimizeOptions o;
+    o.solver = OptimizeSolver::Cholesky;
+    Eigen::MatrixXd x_direct = mesh.x, x_free = mesh.x;
+    const OptimizeResult direct = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, o, x_direct);
+    o.solver = OptimizeSolver::MatrixFree;
+    const OptimizeResult free = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, o, x_free);
+    ASSERT_TRUE(direct.converged) << direct.message;
+    ASSERT_TRUE(free.converged) << free.message;
+    EXPECT_EQ(direct.solver, "cholmod");
+    EXPECT_EQ(free.solver, "matrix-free");
+    EXPECT_GT(free.energy, 1e-4);
+    EXPECT_NEAR(free.energy, direct.energy, 1e-10 * direct.energy);
+    EXPECT_LT((x_free - x_direct).cwiseAbs().maxCoeff(), 1e-6);
+    EXPECT_GT(free.min_det, 0.0);
+    EXPECT_LE(free.newton, 30);
+  }
+}
+
+// Sliding nodes are not matrix-free yet: such a run takes CHOLMOD.
+TEST(Optimize, MatrixFreeWithSlidesFallsBackToCholesky) {
+  const Mesh mesh = structured_mesh(ElementType::Quadrilateral, 2, 3);
+  const Topology topo = build_topology(mesh);
+  std::vector<std::uint8_t> fixed(2 * mesh.n_nodes(), 0);
+  const std::vector<FitTerm> slides = boundary_slides(mesh, topo, topo.boundary_facets, 30.0, false, fixed);
+  ASSERT_FALSE(slides.empty());
+  OptimizeOptions o;
+  o.solver = OptimizeSolver::MatrixFree;
+  Eigen::MatrixXd x = jitter_interior(mesh, topo, 0.1, 1.0 / 6, 3);
+  const OptimizeResult r = optimize_mesh(mesh, topo, fixed, slides, o, x);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.solver, "cholmod");
+}
+
 }  // namespace
 }  // namespace meshmorph

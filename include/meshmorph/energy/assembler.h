@@ -34,6 +34,29 @@ struct Assembly {
   std::vector<double> element_values;  ///< E_e per cell without ω_e (global cell order)
 };
 
+/// The Hessian of an energy as an operator (partial assembly): what EnergyAssembler's
+/// apply_hessian() needs per quadrature point, with no matrix. For point q of a cell,
+/// K_q = w_q (W_q⁻¹ ⊗ I) d²μ/dT²(T_q) (W_q⁻¹ ⊗ I)ᵀ (d² × d², column-major; d²μ/dT² PSD-projected
+/// in Projected mode), the second derivative of w_q μ with respect to the reference gradient
+/// G = X ∇N_q of the nodal map: T = G W⁻¹, so vec(T) = (W⁻ᵀ ⊗ I) vec(G). K_q is symmetric and
+/// stored packed: the rows of its upper triangle, d²(d² + 1)/2 doubles a point.
+template <int d>
+struct HessianAction {
+  std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d²(d² + 1)/2
+  /// Per cell block of simplices instead of K: the element Hessians (component-major local
+  /// order k·n + a), packed as K_q, n_cells × d·n(d·n + 1)/2: fewer numbers and flops than K.
+  std::vector<std::vector<double>> element;
+  /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
+  /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
+  /// or rule that does not factor).
+  struct Tensor {
+    int P = 0, m = 0;                 ///< 1D nodes, 1D points
+    Eigen::MatrixXd B, D;             ///< m × P: l_i(x_q), l_i'(x_q)
+    std::vector<std::int32_t> node;   ///< local node of lattice index i + P(j + P k)
+  };
+  std::vector<Tensor> tensor;
+};
+
 /// Assembles the energy Σ_e ω_e E_e of a metric over all cells of a mesh, with its gradient
 /// and sparse Hessian over the free DOFs of a DofMap.
 ///
@@ -49,8 +72,11 @@ template <int d>
 class EnergyAssembler {
  public:
   /// `mesh`, `topology` (of mesh), `targets` (of mesh) and `dofs` must outlive the assembler.
+  /// `matrix` false skips the sparse pattern and scatter map (the bulk of the assembler's
+  /// memory on high-order meshes): for the matrix-free Hessian only, and assemble() with
+  /// Want::Hessian throws std::invalid_argument.
   EnergyAssembler(const Mesh& mesh, const Topology& topology, const TargetField<d>& targets,
-                  const DofMap& dofs);
+                  const DofMap& dofs, bool matrix = true);
 
   /// Evaluates at nodal coordinates `x` (d × n_nodes; fixed DOFs are read from it too).
   /// Reuses the storage of `out` (its Hessian keeps this assembler's pattern). Want::Value
@@ -62,6 +88,22 @@ class EnergyAssembler {
   /// The energy only (for line searches): Σ_e ω_e E_e, +∞ if any cell is inverted.
   double value(const Metric<d>& metric, const Eigen::MatrixXd& x, std::span<const double> weights = {},
                int threads = 0) const;
+
+  /// Partial assembly of the Hessian of assemble() (weights ω_e = 1, `mode` as
+  /// AssemblyOptions::hessian) at x into `out`. Returns false, leaving `out` unspecified, when
+  /// μ is not finite at some point (an inverted cell).
+  bool prepare_hessian(const Metric<d>& metric, const Eigen::MatrixXd& x, HessianMode mode, int threads,
+                       HessianAction<d>& out) const;
+  /// y = H v for the Hessian H over the free DOFs that `action` holds: the product of
+  /// assemble()'s Hessian and v to rounding, element by element
+  /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ, by sum factorization on hexahedra; H_e v_e on
+  /// simplices), coloured as
+  /// assemble(), so bit-for-bit the same for any thread count. `v` and `y` have n_free entries.
+  void apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
+                     int threads = 0) const;
+  /// The diagonal of that H, without forming H: H_ii = Σ_q Σ_jm ∂_j N_a K_q(k + dj, k + dm) ∂_m N_a
+  /// for DOF i = (node a, component k).
+  Eigen::VectorXd hessian_diagonal(const HessianAction<d>& action, int threads = 0) const;
 
   const DofMap& dofs() const { return *dofs_; }
   std::size_t n_cells() const { return n_cells_; }

@@ -13,6 +13,27 @@
 
 namespace meshmorph {
 
+/// How optimize solves for its Newton steps.
+enum class OptimizeSolver {
+  /// Without slides, MatrixFree from k_optimize_matrix_free_dofs free DOFs up on meshes of
+  /// hexahedra (sum factorization) and from k_optimize_matrix_free_dofs_any up on any mesh;
+  /// else Cholesky (bench/README.md)
+  Auto,
+  Cholesky,    ///< the assembled Hessian factored by CHOLMOD
+  Iterative,   ///< the assembled Hessian, CG with smoothed-aggregation AMG
+  /// No matrix: the Hessian's action per quadrature point, Jacobi-preconditioned CG to an
+  /// Eisenstat–Walker tolerance (newton_matrix_free; MFEM's partial assembly). Not with
+  /// sliding nodes: those runs take Cholesky.
+  MatrixFree,
+};
+
+/// Free DOFs from which OptimizeSolver::Auto takes MatrixFree on hexahedral meshes: at 95k,
+/// 17.7 s against CHOLMOD's 31.6 s (fichq3_rs3_o2, bench/README.md).
+inline constexpr std::size_t k_optimize_matrix_free_dofs = 50000;
+/// The same on other meshes, where CHOLMOD is faster at 95k (escher_rs3_o2: 22.8 s against
+/// 26.8 s) but its factor reaches 4.3 GB at 311k, against 0.5 GB matrix-free.
+inline constexpr std::size_t k_optimize_matrix_free_dofs_any = 200000;
+
 /// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
 /// mesh-optimizer runs of docs/optimize.md.
 struct OptimizeOptions {
@@ -33,7 +54,7 @@ struct OptimizeOptions {
   /// min det A stays above det_floor · its initial value; 0: det A > 0 only, as TMOP (the
   /// barrier of μ keeps elements from collapsing; a floor would stall meshes that must thin one)
   double det_floor = 0.0;
-  LinearSolverKind solver = LinearSolverKind::Auto;
+  OptimizeSolver solver = OptimizeSolver::Auto;
   int threads = 0;  ///< OpenMP threads; 0 = optimize_threads(0, DOFs)
 };
 
@@ -55,11 +76,12 @@ struct OptimizeIteration {
 struct OptimizeResult {
   bool converged = false;
   std::string message;
-  long long newton = 0, linear = 0;
+  long long newton = 0, linear = 0;  ///< linear: solves, or CG iterations when matrix-free
   double energy0 = 0.0, energy = 0.0;  ///< F before and after
   double min_det0 = 0.0, min_det = 0.0;
   double mu_min = 0.0, mu_mean = 0.0, mu_max = 0.0;  ///< over the quadrature points, after
   int quadrature_degree = 0;  ///< the degree used (0: each block's metric_quadrature_degree)
+  std::string solver;         ///< "cholmod", "cg-amg" or "matrix-free": what solved the steps
   std::vector<OptimizeIteration> history;
 };
 

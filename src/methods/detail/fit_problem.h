@@ -29,12 +29,17 @@ namespace meshmorph {
 /// projected back onto the constraints by Gauss–Newton (minimal-norm corrections). A node on
 /// one level set takes N and its share of |∇F| from it (step_normals, stationarity): ∇σ and
 /// |P g| but at the creases of a facet surface (geometry/facet_surface.h).
+///
+/// Matrix-free (evaluate_action(), for newton_matrix_free()): the metric Hessian as an
+/// operator (EnergyAssembler::prepare_hessian), without fitted nodes or slides (throws
+/// std::invalid_argument otherwise). Constructed with `matrix_free`, the problem holds no
+/// sparse pattern and evaluate() throws.
 template <int d>
-class FitProblem final : public NewtonProblem {
+class FitProblem final : public MatrixFreeNewtonProblem {
  public:
   FitProblem(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,
              const std::vector<std::uint8_t>& fixed, const FitOptions& options, const Eigen::MatrixXd& x,
-             const std::vector<FitTerm>& slides = {});
+             const std::vector<FitTerm>& slides = {}, bool matrix_free = false);
 
   std::size_t n_free() const { return dofs_.n_free(); }
   const Eigen::MatrixXd& state() const { return x_; }
@@ -61,6 +66,9 @@ class FitProblem final : public NewtonProblem {
   void remember_current();
   /// |∇F| over the free DOFs at the iterate of the last remember_current().
   double current_gradient_norm() const { return gradient_norm_; }
+  /// F and min det A at the iterate of the last accept(), as the line search measured them.
+  double accepted_energy() const { return current_.energy; }
+  double accepted_min_det() const { return current_.min_det; }
   /// min, mean and max of μ(T) over the metric quadrature points of every cell at the
   /// current iterate (+∞ where a point is inverted).
   std::array<double, 3> metric_range() const;
@@ -69,6 +77,9 @@ class FitProblem final : public NewtonProblem {
   double trial_value(const Eigen::VectorXd& p, double alpha) override;
   bool admissible(const Eigen::VectorXd& p, double alpha) override;
   void accept(const Eigen::VectorXd& p, double alpha) override;
+  void evaluate_action(HessianMode mode, Assembly& out) override;
+  void apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) override;
+  Eigen::VectorXd hessian_diagonal() override;
 
  private:
   void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
@@ -99,6 +110,7 @@ class FitProblem final : public NewtonProblem {
   DofMap dofs_;
   std::unique_ptr<EnergyAssembler<d>> assembler_;
   std::unique_ptr<Metric<d>> metric_;
+  HessianAction<d> action_;  // of the last evaluate_action()
   // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
   // the Hessian's value array, −1 for a fixed DOF.
   std::vector<std::int64_t> block_offsets_;
@@ -106,6 +118,13 @@ class FitProblem final : public NewtonProblem {
   std::vector<SlideNode> slides_;
   std::vector<std::int32_t> slide_of_row_;  // reduced index of a slide node's first DOF → slot, else −1
   std::vector<std::int64_t> slide_offsets_;  // the d×d diagonal block of each slide node, as block_offsets_
+  // F, min det A and |∇F| at the point x + α p that trial_value() and admissible() measured
+  // (admitted_, in trial_; `admitted` once admissible() passed it) and at the accepted one.
+  struct Measured {
+    double alpha = -1.0, energy = 0.0, min_det = 0.0, gradient_norm = 0.0;
+    bool admitted = false;
+  };
+  Measured admitted_, current_;
   double min_det0_ = 0.0;
   double gradient_norm_ = 0.0, error_ = 0.0;  // at the current iterate, for the line search
   Eigen::MatrixXd x_, trial_;

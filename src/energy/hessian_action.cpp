@@ -1,0 +1,469 @@
+// SPDX-License-Identifier: MIT
+// Partial assembly of EnergyAssembler's Hessian: K_q per quadrature point, and its action.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <omp.h>
+
+#include "energy/detail/element_kernel.h"
+#include "meshmorph/energy/assembler.h"
+#include "meshmorph/error.h"
+#include "meshmorph/fem/reference_element.h"
+
+namespace meshmorph {
+namespace {
+
+constexpr int k_sq(int d) { return d * d; }
+// Entries of a symmetric dd × dd matrix packed by rows of its upper triangle.
+constexpr int k_packed(int dd) { return dd * (dd + 1) / 2; }
+
+// h = K g for K packed as k_packed(dd): K is read once, which bounds a matrix-free product (the
+// K of every point are the bulk of its memory traffic).
+template <int dd>
+inline void packed_product(const double* K, const double* g, double* h) {
+  for (int i = 0; i < dd; ++i) h[i] = 0.0;
+  for (int i = 0, o = 0; i < dd; ++i) {
+    h[i] += K[o++] * g[i];
+    for (int j = i + 1; j < dd; ++j, ++o) {
+      h[i] += K[o] * g[j];
+      h[j] += K[o] * g[i];
+    }
+  }
+}
+
+// h = K g for a packed symmetric n × n K (as packed_product, n at run time).
+inline void packed_product(const double* K, const double* g, double* h, int n) {
+  for (int i = 0; i < n; ++i) h[i] = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double gi = g[i];
+    double hi = h[i] + K[0] * gi;
+    for (int j = i + 1; j < n; ++j) {
+      hi += K[j - i] * g[j];
+      h[j] += K[j - i] * gi;
+    }
+    h[i] = hi;
+    K += n - i;
+  }
+}
+
+// Entry (i, j), i ≤ j, of a packed dd × dd matrix.
+constexpr int packed_index(int dd, int i, int j) { return i * dd - i * (i - 1) / 2 + (j - i); }
+
+int threads_of(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
+
+// Cells per dense product of apply_hessian: 16 cells give the products 3·16 rows in 3D, enough
+// for the blocked kernel to amortise the packing of ∇N.
+constexpr int k_batch = 16;
+
+// The 1D factors of a hexahedral block: its nodes on a lattice of P coordinates per direction,
+// its points the tensor rule (x fastest), ∂N_a/∂ξ = l_i'(ξ) l_j(η) l_k(ζ) and so on. Checked
+// against the table's gradients; P = 0 (dense products) where anything differs.
+template <int d>
+typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const ShapeTable& table) {
+  typename HessianAction<d>::Tensor t;
+  if (d != 3 || block.type != ElementType::Hexahedron) return t;
+  const ReferenceElement& ref = reference_element(block.type, block.order);
+  std::vector<double> xs(ref.nodes.row(0).begin(), ref.nodes.row(0).end());
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), xs.end());
+  const int P = static_cast<int>(xs.size()), n = table.n_nodes(), Q = table.n_points();
+  const int m = static_cast<int>(std::lround(std::cbrt(Q)));
+  if (P * P * P != n || m * m * m != Q) return t;
+  const auto index_of = [&](double v) {
+    for (int i = 0; i < P; ++i)
+      if (std::abs(xs[static_cast<std::size_t>(i)] - v) < 1e-12) return i;
+    return -1;
+  };
+  std::vector<std::int32_t> node(static_cast<std::size_t>(n), -1);
+  for (int a = 0; a < n; ++a) {
+    int lattice = 0;
+    for (int k = d - 1; k >= 0; --k) {
+      const int i = index_of(ref.nodes(k, a));
+      if (i < 0) return t;
+      lattice = lattice * P + i;
+    }
+    node[static_cast<std::size_t>(lattice)] = a;
+  }
+  if (std::count(node.begin(), node.end(), -1) > 0) return t;
+  Eigen::MatrixXd B(m, P), D(m, P);
+  for (int q = 0; q < m; ++q) {
+    const double x = table.points(0, q);
+    for (int i = 0; i < P; ++i) {
+      double value = 1.0, slope = 0.0;
+      for (int j = 0; j < P; ++j) {
+        if (j == i) continue;
+        const double h = xs[static_cast<std::size_t>(i)] - xs[static_cast<std::size_t>(j)];
+        slope = slope * (x - xs[static_cast<std::size_t>(j)]) / h + value / h;  // product rule
+        value *= (x - xs[static_cast<std::size_t>(j)]) / h;
+      }
+      B(q, i) = value;
+      D(q, i) = slope;
+    }
+  }
+  const double scale = table.dN.cwiseAbs().maxCoeff();
+  for (int q = 0; q < Q; ++q) {
+    const int qi[3] = {q % m, (q / m) % m, q / (m * m)};
+    for (int k = 0; k < d; ++k)
+      if (std::abs(table.points(k, q) - table.points(0, qi[k])) > 1e-14) return t;
+    for (int lattice = 0; lattice < n; ++lattice) {
+      const int li[3] = {lattice % P, (lattice / P) % P, lattice / (P * P)};
+      const int a = node[static_cast<std::size_t>(lattice)];
+      for (int j = 0; j < d; ++j) {
+        double g = 1.0;
+        for (int k = 0; k < d; ++k) g *= (k == j ? D : B)(qi[k], li[k]);
+        if (std::abs(g - table.dN(a, q * d + j)) > 1e-11 * scale) return t;
+      }
+    }
+  }
+  t.P = P;
+  t.m = m;
+  t.B = std::move(B);
+  t.D = std::move(D);
+  t.node = std::move(node);
+  return t;
+}
+
+// Work space of hex_action.
+struct HexScratch {
+  std::vector<double> u, y, A0, A1, C00, C01, C10, E00, E01, E10, F0, F1;
+};
+
+// y_e = Σ_q mat(K_q vec(G_q)) ∇N_qᵀ on one hexahedron by sum factorization: the gradients G_q of
+// the three components at the m³ points in three 1D passes (x, y, then z: O(m P³ + m² P² + m³ P)
+// instead of O(m³ P³)), K_q point by point, and the transposed passes back. u and y: the nodal
+// values in lattice order, component fastest.
+// P_ and m_ > 0 fix P and m at compile time (the loops unroll), 0 reads them from t.
+template <int P_, int m_>
+void hex_action(const HessianAction<3>::Tensor& t, const double* K, HexScratch& s) {
+  const int P = P_ > 0 ? P_ : t.P, m = m_ > 0 ? m_ : t.m;
+  const auto B = [&](int q, int i) { return t.B(q, i); };
+  const auto D = [&](int q, int i) { return t.D(q, i); };
+  s.A0.assign(static_cast<std::size_t>(3 * m * P * P), 0.0);
+  s.A1.assign(s.A0.size(), 0.0);
+  for (int iz = 0; iz < P; ++iz)
+    for (int iy = 0; iy < P; ++iy)
+      for (int qx = 0; qx < m; ++qx) {
+        double* a0 = &s.A0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        double* a1 = &s.A1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        for (int ix = 0; ix < P; ++ix) {
+          const double* u = &s.u[static_cast<std::size_t>(3 * (ix + P * (iy + P * iz)))];
+          const double b = B(qx, ix), dd = D(qx, ix);
+          for (int k = 0; k < 3; ++k) a0[k] += b * u[k], a1[k] += dd * u[k];
+        }
+      }
+  s.C00.assign(static_cast<std::size_t>(3 * m * m * P), 0.0);
+  s.C01.assign(s.C00.size(), 0.0);
+  s.C10.assign(s.C00.size(), 0.0);
+  for (int iz = 0; iz < P; ++iz)
+    for (int qy = 0; qy < m; ++qy)
+      for (int qx = 0; qx < m; ++qx) {
+        const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+        for (int iy = 0; iy < P; ++iy) {
+          const double* a0 = &s.A0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const double* a1 = &s.A1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const double b = B(qy, iy), dd = D(qy, iy);
+          for (int k = 0; k < 3; ++k) s.C00[o + k] += b * a0[k], s.C01[o + k] += dd * a0[k], s.C10[o + k] += b * a1[k];
+        }
+      }
+  s.E00.assign(s.C00.size(), 0.0);
+  s.E01.assign(s.C00.size(), 0.0);
+  s.E10.assign(s.C00.size(), 0.0);
+  for (int qz = 0; qz < m; ++qz)
+    for (int qy = 0; qy < m; ++qy)
+      for (int qx = 0; qx < m; ++qx) {
+        Eigen::Matrix<double, 9, 1> g = Eigen::Matrix<double, 9, 1>::Zero();  // vec(G), G(k, j) = ∂_j u_k
+        for (int iz = 0; iz < P; ++iz) {
+          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const double b = B(qz, iz), dd = D(qz, iz);
+          for (int k = 0; k < 3; ++k) g[k] += b * s.C10[o + k], g[3 + k] += b * s.C01[o + k], g[6 + k] += dd * s.C00[o + k];
+        }
+        const int q = qx + m * (qy + m * qz);
+        Eigen::Matrix<double, 9, 1> h;
+        packed_product<9>(K + k_packed(9) * q, g.data(), h.data());
+        for (int iz = 0; iz < P; ++iz) {
+          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const double b = B(qz, iz), dd = D(qz, iz);
+          for (int k = 0; k < 3; ++k) s.E10[o + k] += b * h[k], s.E01[o + k] += b * h[3 + k], s.E00[o + k] += dd * h[6 + k];
+        }
+      }
+  s.F0.assign(s.A0.size(), 0.0);
+  s.F1.assign(s.A0.size(), 0.0);
+  for (int iz = 0; iz < P; ++iz)
+    for (int iy = 0; iy < P; ++iy)
+      for (int qx = 0; qx < m; ++qx) {
+        double* f0 = &s.F0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        double* f1 = &s.F1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        for (int qy = 0; qy < m; ++qy) {
+          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const double b = B(qy, iy), dd = D(qy, iy);
+          for (int k = 0; k < 3; ++k) f0[k] += b * s.E00[o + k] + dd * s.E01[o + k], f1[k] += b * s.E10[o + k];
+        }
+      }
+  s.y.assign(s.u.size(), 0.0);
+  for (int iz = 0; iz < P; ++iz)
+    for (int iy = 0; iy < P; ++iy)
+      for (int ix = 0; ix < P; ++ix) {
+        double* y = &s.y[static_cast<std::size_t>(3 * (ix + P * (iy + P * iz)))];
+        for (int qx = 0; qx < m; ++qx) {
+          const double* f0 = &s.F0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const double* f1 = &s.F1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const double b = B(qx, ix), dd = D(qx, ix);
+          for (int k = 0; k < 3; ++k) y[k] += b * f0[k] + dd * f1[k];
+        }
+      }
+}
+
+// The hex_action for t's sizes: compiled for the Lobatto rules of orders 1–4 (m = p + 2).
+using HexKernel = void (*)(const HessianAction<3>::Tensor&, const double*, HexScratch&);
+HexKernel hex_kernel(const HessianAction<3>::Tensor& t) {
+  if (t.P == 2 && t.m == 3) return hex_action<2, 3>;
+  if (t.P == 3 && t.m == 4) return hex_action<3, 4>;
+  if (t.P == 4 && t.m == 5) return hex_action<4, 5>;
+  if (t.P == 5 && t.m == 6) return hex_action<5, 6>;
+  return hex_action<0, 0>;
+}
+
+}  // namespace
+
+template <int d>
+bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::MatrixXd& x, HessianMode mode, int threads,
+                                         HessianAction<d>& out) const {
+  constexpr int dd = k_sq(d);
+  using Hess = Eigen::Matrix<double, dd, dd>;
+  out.K.resize(mesh_->cells.size());
+  out.element.resize(mesh_->cells.size());
+  out.tensor.clear();
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi)
+    out.tensor.push_back(tensor_factors<d>(mesh_->cells[bi], *targets_->blocks[bi].table));
+  int finite = 1;
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi) {
+    const CellBlock& block = mesh_->cells[bi];
+    const BlockTargets<d>& bt = targets_->blocks[bi];
+    const ShapeTable& table = *bt.table;
+    const int n = block.n_nodes_per_cell(), Q = bt.n_points();
+    std::vector<double>& K = out.K[bi];
+    std::vector<double>& E = out.element[bi];
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    if (is_simplex(block.type)) {
+      // Element matrices (component-major, as detail::element_kernel): on simplices (d·n)² is
+      // less than the per-point data and its products, e.g. 3600 against 46·45 + 2·3·20·138 for
+      // a P3 tetrahedron at degree 8.
+      K.clear();
+      const int dn = d * n;
+      E.resize(block.n_cells() * static_cast<std::size_t>(k_packed(dn)));
+#pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
+      for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+        detail::NodalMatrix<d> X(d, n);
+        detail::ElementScratch<d> scratch;
+        const std::int32_t* nodes = block.cell(static_cast<std::size_t>(c));
+        for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+        const double e = detail::element_kernel<d>(metric, table, bt.cell(static_cast<std::size_t>(c)), X, Want::Hessian, mode, scratch);
+        if (!(e < std::numeric_limits<double>::infinity())) {
+          finite = 0;
+          continue;
+        }
+        double* packed = E.data() + static_cast<std::size_t>(c) * k_packed(dn);
+        for (int i = 0; i < dn; ++i)
+          for (int j = i; j < dn; ++j) *packed++ = scratch.H(i, j);  // exactly symmetric (complete_symmetric)
+      }
+      continue;
+    }
+    E.clear();
+    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * k_packed(dd));
+#pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
+      detail::NodalMatrix<d> X(d, n);
+      const std::int32_t* nodes = block.cell(static_cast<std::size_t>(c));
+      for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
+      const QuadratureTarget<d>* t = bt.cell(static_cast<std::size_t>(c));
+      for (int q = 0; q < Q; ++q) {
+        const MatT<d> G = X.lazyProduct(table.grad(q));
+        const MatT<d> T = G * t[q].W_inv;
+        const MetricEval<d> ev = metric.eval(T, Want::Hessian);
+        if (!(ev.mu < std::numeric_limits<double>::infinity())) {
+          finite = 0;
+          continue;
+        }
+        Hess Hq = ev.d2mu_dT2;
+        if (mode == HessianMode::Projected) detail::project_isotropic<d>(T, Hq);
+        // M = W⁻¹ ⊗ I: M(k + dj, k + dm) = W⁻¹(j, m), so that vec(T) = Mᵀ vec(G).
+        Hess M = Hess::Zero();
+        for (int j = 0; j < d; ++j)
+          for (int m = 0; m < d; ++m)
+            for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = t[q].W_inv(j, m);
+        const Hess Kq = t[q].weight * (M * Hq * M.transpose());
+        double* packed = K.data() + (static_cast<std::size_t>(c) * Q + q) * k_packed(dd);
+        for (int i = 0; i < dd; ++i)
+          for (int j = i; j < dd; ++j) *packed++ = 0.5 * (Kq(i, j) + Kq(j, i));
+      }
+    }
+  }
+  return finite != 0;
+}
+
+template <int d>
+void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
+                                       int threads) const {
+  constexpr int dd = k_sq(d);
+  MESHMORPH_CHECK(action.K.size() == mesh_->cells.size() && v.size() == static_cast<Eigen::Index>(dofs_->n_free()),
+                  "EnergyAssembler::apply_hessian: the action or v does not fit");
+  y.setZero(v.size());
+  const std::int32_t* red = dofs_->reduced_index().data();
+#pragma omp parallel num_threads(threads_of(threads))
+  {
+    Eigen::MatrixXd V, R, Y;
+    Eigen::VectorXd ue, ye;
+    HexScratch hex;
+    for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+      const CellBlock& block = mesh_->cells[bi];
+      const Eigen::MatrixXd& dN = targets_->blocks[bi].table->dN;  // n × dQ
+      const BlockPlan& plan = blocks_[bi];
+      const int n = block.n_nodes_per_cell(), Q = targets_->blocks[bi].n_points();
+      const double* K = action.K[bi].data();
+      const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * k_packed(dd); };
+      // Patches of one colour share no node (assemble()): their scatters never collide.
+      for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
+#pragma omp for schedule(dynamic, 1)
+        for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p) {
+          if constexpr (d == 3) {
+            if (const auto& t = action.tensor[bi]; t.P > 0) {
+              for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+                const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+                const std::int32_t* nodes = block.cell(c);
+                hex.u.resize(static_cast<std::size_t>(3 * n));
+                for (int l = 0; l < n; ++l)
+                  for (int k = 0; k < 3; ++k) {
+                    const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k];
+                    hex.u[static_cast<std::size_t>(3 * l + k)] = r >= 0 ? v[r] : 0.0;
+                  }
+                hex_kernel(t)(t, K_of(c), hex);
+                for (int l = 0; l < n; ++l)
+                  for (int k = 0; k < 3; ++k)
+                    if (const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k]; r >= 0)
+                      y[r] += hex.y[static_cast<std::size_t>(3 * l + k)];
+              }
+              continue;
+            }
+          }
+          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+            const int dn = d * n;
+            ue.resize(dn);
+            ye.resize(dn);
+            for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+              const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+              const std::int32_t* nodes = block.cell(c);
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k) {
+                  const std::int32_t r = red[d * nodes[a] + k];
+                  ue[k * n + a] = r >= 0 ? v[r] : 0.0;
+                }
+              packed_product(E.data() + c * static_cast<std::size_t>(k_packed(dn)), ue.data(), ye.data(), dn);
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k)
+                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += ye[k * n + a];
+            }
+            continue;
+          }
+          // Dense: the cells of a patch k_batch at a time, their nodal values stacked as the d·b
+          // rows of V, so that one product R = V ∇N over all points (the reference gradients
+          // G_q of cell e in rows d·e .. d·e + d − 1, column block q) and one back share the
+          // packing of ∇N; K_q applied per cell and point in between.
+          for (std::int32_t first = plan.patch_offset[p]; first < plan.patch_offset[p + 1]; first += k_batch) {
+            const int b = std::min<int>(k_batch, plan.patch_offset[p + 1] - first);
+            const auto cell_of = [&](int e) { return static_cast<std::size_t>(plan.order[static_cast<std::size_t>(first + e)]); };
+            V.resize(d * b, n);
+            for (int e = 0; e < b; ++e) {
+              const std::int32_t* nodes = block.cell(cell_of(e));
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k) {
+                  const std::int32_t r = red[d * nodes[a] + k];
+                  V(d * e + k, a) = r >= 0 ? v[r] : 0.0;
+                }
+            }
+            R.noalias() = V * dN;
+            for (int e = 0; e < b; ++e) {
+              const double* Kc = K_of(cell_of(e));
+              for (int q = 0; q < Q; ++q) {
+                Eigen::Matrix<double, dd, 1> g;
+                for (int j = 0; j < d; ++j)
+                  for (int k = 0; k < d; ++k) g[k + d * j] = R(d * e + k, q * d + j);
+                Eigen::Matrix<double, dd, 1> h;
+                packed_product<dd>(Kc + q * k_packed(dd), g.data(), h.data());
+                for (int j = 0; j < d; ++j)
+                  for (int k = 0; k < d; ++k) R(d * e + k, q * d + j) = h[k + d * j];
+              }
+            }
+            Y.noalias() = R * dN.transpose();
+            for (int e = 0; e < b; ++e) {
+              const std::int32_t* nodes = block.cell(cell_of(e));
+              for (int a = 0; a < n; ++a)
+                for (int k = 0; k < d; ++k)
+                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += Y(d * e + k, a);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+template <int d>
+Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& action, int threads) const {
+  constexpr int dd = k_sq(d);
+  MESHMORPH_CHECK(action.K.size() == mesh_->cells.size(), "EnergyAssembler::hessian_diagonal: the action does not fit");
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs_->n_free()));
+  const std::int32_t* red = dofs_->reduced_index().data();
+#pragma omp parallel num_threads(threads_of(threads))
+  for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+    Eigen::Matrix<double, d, Eigen::Dynamic> h;
+    const CellBlock& block = mesh_->cells[bi];
+    const ShapeTable& table = *targets_->blocks[bi].table;
+    const BlockPlan& plan = blocks_[bi];
+    const int n = block.n_nodes_per_cell(), Q = table.n_points();
+    const double* K = action.K[bi].data();
+    for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
+#pragma omp for schedule(dynamic, 1)
+      for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p)
+        for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
+          const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
+          const std::int32_t* nodes = block.cell(c);
+          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+            const int dn = d * n;
+            for (int a = 0; a < n; ++a)
+              for (int k = 0; k < d; ++k)
+                if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0)
+                  diagonal[r] += E[c * static_cast<std::size_t>(k_packed(dn)) + static_cast<std::size_t>(packed_index(dn, k * n + a, k * n + a))];
+            continue;
+          }
+          const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
+          h.setZero(d, n);
+          for (int q = 0; q < Q; ++q) {
+            // The blocks K_q(k + dj, k + dm), j ≤ m, off-diagonal ones doubled (they appear twice).
+            const double* Kq = Kc + q * k_packed(dd);
+            double kk[d][d][d];
+            for (int k = 0; k < d; ++k)
+              for (int j = 0; j < d; ++j)
+                for (int m = j; m < d; ++m) kk[k][j][m] = (j == m ? 1.0 : 2.0) * Kq[packed_index(dd, k + d * j, k + d * m)];
+            const double* dNq = table.dN.data() + static_cast<std::ptrdiff_t>(q) * d * n;  // column q·d + j at j·n
+            for (int a = 0; a < n; ++a)
+              for (int j = 0; j < d; ++j)
+                for (int m = j; m < d; ++m) {
+                  const double w = dNq[j * n + a] * dNq[m * n + a];
+                  for (int k = 0; k < d; ++k) h(k, a) += w * kk[k][j][m];
+                }
+          }
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k)
+              if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) diagonal[r] += h(k, a);
+        }
+    }
+  }
+  return diagonal;
+}
+
+template class EnergyAssembler<2>;
+template class EnergyAssembler<3>;
+
+}  // namespace meshmorph

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "meshmorph/solve/newton.h"
+
+namespace meshmorph::detail {
+
+/// Step length α and energy there of the backtracking Armijo search along p from an iterate of
+/// energy `value` and gradient g (c = options.armijo, α halved by options.backtrack): never
+/// past a non-finite energy or an inadmissible point. α < options.min_step: none found.
+struct LineSearch {
+  double alpha = 1.0, value = 0.0;
+};
+
+inline LineSearch line_search(NewtonProblem& problem, double value, const Eigen::VectorXd& g, const Eigen::VectorXd& p,
+                              const NewtonOptions& options) {
+  LineSearch s;
+  const double slope = g.dot(p);
+  s.value = problem.trial_value(p, s.alpha);
+  while (!(std::isfinite(s.value) && s.value <= value + options.armijo * s.alpha * slope && problem.admissible(p, s.alpha))) {
+    s.alpha *= options.backtrack;
+    if (s.alpha < options.min_step) break;
+    s.value = problem.trial_value(p, s.alpha);
+  }
+  return s;
+}
+
+}  // namespace meshmorph::detail

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "meshmorph/log.h"
+#include "meshmorph/solve/newton.h"
+#include "solve/detail/line_search.h"
+
+namespace meshmorph {
+namespace {
+
+struct CgResult {
+  int iterations = 0;
+  bool converged = false;  // reached the relative residual asked for
+  bool curvature = false;  // stopped at a direction of nonpositive curvature
+};
+
+// Jacobi-preconditioned CG on H p = b from p = 0, truncated at nonpositive curvature
+// (Steihaug): p is then the last iterate, a descent direction for −b, or none (iterations 0).
+CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const Eigen::VectorXd& inverse_diagonal, const Eigen::VectorXd& b,
+                      double rtol, int max_iterations, Eigen::VectorXd& p) {
+  CgResult result;
+  p.setZero(b.size());
+  Eigen::VectorXd r = b, z = inverse_diagonal.cwiseProduct(r), s = z, Hs(b.size());
+  double rz = r.dot(z);
+  const double target = rtol * b.norm();
+  while (result.iterations < max_iterations) {
+    problem.apply_hessian(s, Hs);
+    const double curvature = s.dot(Hs);
+    if (!(curvature > 0.0)) {
+      result.curvature = true;
+      return result;
+    }
+    const double step = rz / curvature;
+    p += step * s;
+    r -= step * Hs;
+    ++result.iterations;
+    if (r.norm() <= target) {
+      result.converged = true;
+      return result;
+    }
+    z = inverse_diagonal.cwiseProduct(r);
+    const double rz_next = r.dot(z);
+    s = z + (rz_next / rz) * s;
+    rz = rz_next;
+  }
+  return result;
+}
+
+// 1/|H_ii|, with |H_ii| at least 1e-3 of its mean, so that the null rows of a projected Hessian
+// stay preconditioned (as newton()'s shift scales).
+Eigen::VectorXd jacobi(const Eigen::VectorXd& diagonal) {
+  const double mean = diagonal.size() > 0 && diagonal.cwiseAbs().mean() > 0.0 ? diagonal.cwiseAbs().mean() : 1.0;
+  return diagonal.cwiseAbs().cwiseMax(1e-3 * mean).cwiseInverse();
+}
+
+}  // namespace
+
+NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOptions& options,
+                               const KrylovNewtonOptions& krylov) {
+  NewtonStats stats;
+  Assembly a;
+  Eigen::VectorXd p;
+  bool exact_ready = false;
+  double forcing = krylov.max_forcing, previous_norm = 0.0;
+  for (;;) {
+    bool exact = options.exact_first && exact_ready;
+    problem.evaluate_action(exact ? HessianMode::Exact : HessianMode::Projected, a);
+    stats.value = a.value;
+    if (!std::isfinite(a.value)) {
+      stats.message = "the energy is not finite at the starting point (an inverted element)";
+      return stats;
+    }
+    if (a.gradient.size() == 0) {
+      stats.converged = true;
+      return stats;
+    }
+    const double norm = a.gradient.norm();
+    if (previous_norm > 0.0) {
+      const double ratio = norm / previous_norm;
+      double next = krylov.gamma * ratio * ratio;
+      if (krylov.gamma * forcing * forcing > 0.1) next = std::max(next, krylov.gamma * forcing * forcing);
+      forcing = std::clamp(next, krylov.min_forcing, krylov.max_forcing);
+    }
+    previous_norm = norm;
+    CgResult cg = truncated_cg(problem, jacobi(problem.hessian_diagonal()), -a.gradient, forcing, krylov.max_iterations, p);
+    ++stats.linear_solves;
+    stats.krylov_iterations += cg.iterations;
+    if (exact && cg.curvature && cg.iterations == 0) {
+      // The exact Hessian curves down along the gradient itself: projected steps until one is
+      // taken in full.
+      log_detail("newton: the exact Hessian is not positive definite along the gradient; projected steps");
+      exact = exact_ready = false;
+      problem.evaluate_action(HessianMode::Projected, a);
+      cg = truncated_cg(problem, jacobi(problem.hessian_diagonal()), -a.gradient, forcing, krylov.max_iterations, p);
+      ++stats.linear_solves;
+      stats.krylov_iterations += cg.iterations;
+    }
+    if (cg.iterations == 0) {
+      stats.message = "no descent direction: the projected Hessian has no positive curvature along the gradient";
+      return stats;
+    }
+    stats.decrement = -0.5 * a.gradient.dot(p);
+    // CG's −½gᵀp only grows towards ½gᵀH⁻¹g: the test is trusted from a converged solve only.
+    if (cg.converged && stats.decrement <= options.decrement_tolerance) {
+      stats.converged = true;
+      return stats;
+    }
+    if (stats.iterations >= options.max_iterations) {
+      stats.message = "Newton reached its iteration limit";
+      return stats;
+    }
+    const detail::LineSearch s = detail::line_search(problem, a.value, a.gradient, p, options);
+    if (s.alpha < options.min_step) {
+      if (!exact) {
+        stats.message = "the line search found no acceptable step";
+        return stats;
+      }
+      log_detail("newton: no acceptable step along the exact Hessian's direction; projected steps");
+      exact_ready = false;
+      continue;
+    }
+    problem.accept(p, s.alpha);
+    if (!exact && s.alpha == 1.0) exact_ready = true;
+    stats.value = s.value;
+    ++stats.iterations;
+    if (log_enabled(LogLevel::Detail)) {
+      char line[200];
+      std::snprintf(line, sizeof line, "newton %d: %s step, alpha %.3g, forcing %.2g, %d CG iterations, decrement %.3e, energy %.10g",
+                    stats.iterations, exact ? "exact" : "projected", s.alpha, forcing, cg.iterations, stats.decrement, s.value);
+      log_detail(line);
+    }
+    if (options.on_step && !options.on_step(stats.iterations, s.alpha)) {
+      stats.stopped = true;
+      return stats;
+    }
+  }
+}
+
+}  // namespace meshmorph
