@@ -54,15 +54,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
   for (;;) {
     bool exact = options.exact_first && m.exact_ready;
     problem.evaluate(exact ? HessianMode::Exact : HessianMode::Projected, a);
-    stats.value = a.value;
-    if (!std::isfinite(a.value)) {
-      stats.message = "the energy is not finite at the starting point (an inverted element)";
-      return stats;
-    }
-    if (a.gradient.size() == 0) {
-      stats.converged = true;
-      return stats;
-    }
+    if (detail::ends_at(a, stats)) return stats;
     const double tol = options.decrement_tolerance;
     const double rtol = std::max(options.forcing, options.linear_rtol);
     // The factorization of an earlier iterate first, as CG preconditioner: its solution

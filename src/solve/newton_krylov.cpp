@@ -67,15 +67,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
   for (;;) {
     bool exact = options.exact_first && exact_ready;
     problem.evaluate_action(exact ? HessianMode::Exact : HessianMode::Projected, a);
-    stats.value = a.value;
-    if (!std::isfinite(a.value)) {
-      stats.message = "the energy is not finite at the starting point (an inverted element)";
-      return stats;
-    }
-    if (a.gradient.size() == 0) {
-      stats.converged = true;
-      return stats;
-    }
+    if (detail::ends_at(a, stats)) return stats;
     const double norm = a.gradient.norm();
     if (previous_norm > 0.0) {
       const double ratio = norm / previous_norm;

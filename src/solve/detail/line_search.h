@@ -28,4 +28,19 @@ inline LineSearch line_search(NewtonProblem& problem, double value, const Eigen:
   return s;
 }
 
+/// The checks at the top of every Newton iteration, after the evaluation `a`: true (with
+/// stats set) when the loop ends there, at a non-finite energy or with no free DOF.
+inline bool ends_at(const Assembly& a, NewtonStats& stats) {
+  stats.value = a.value;
+  if (!std::isfinite(a.value)) {
+    stats.message = "the energy is not finite at the starting point (an inverted element)";
+    return true;
+  }
+  if (a.gradient.size() == 0) {
+    stats.converged = true;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace meshmorph::detail
