@@ -97,6 +97,21 @@ EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, 
     plan.order = std::move(patches.order);
     if (matrix) plan.scatter = detail::scatter_offsets(block, topology, pattern);
   }
+  // The slots of each node, in block, cell and local order (a counting sort).
+  node_slot_offset_.assign(mesh.n_nodes() + 1, 0);
+  std::int64_t slots = 0;
+  for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
+    blocks_[bi].first_slot = slots;
+    slots += static_cast<std::int64_t>(mesh.cells[bi].nodes.size());
+    for (std::int32_t node : mesh.cells[bi].nodes) ++node_slot_offset_[static_cast<std::size_t>(node) + 1];
+  }
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) node_slot_offset_[i + 1] += node_slot_offset_[i];
+  node_slots_.resize(static_cast<std::size_t>(slots));
+  std::vector<std::int64_t> next(node_slot_offset_.begin(), node_slot_offset_.end() - 1);
+  for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi)
+    for (std::size_t s = 0; s < mesh.cells[bi].nodes.size(); ++s)
+      node_slots_[static_cast<std::size_t>(next[static_cast<std::size_t>(mesh.cells[bi].nodes[s])]++)] =
+          blocks_[bi].first_slot + static_cast<std::int64_t>(s);
 }
 
 template <int d>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Partial assembly of EnergyAssembler's Hessian: K_q per quadrature point, and its action.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -304,12 +305,27 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
 }
 
 template <int d>
+template <class Store>
+void EnergyAssembler<d>::gather(const std::vector<double>& local, int width, int threads, Store store) const {
+  const auto n_nodes = static_cast<std::ptrdiff_t>(mesh_->n_nodes());
+#pragma omp parallel for num_threads(threads_of(threads)) schedule(static)
+  for (std::ptrdiff_t i = 0; i < n_nodes; ++i)
+    for (int k = 0; k < width; ++k) {
+      double sum = 0.0;
+      for (std::int64_t s = node_slot_offset_[static_cast<std::size_t>(i)]; s < node_slot_offset_[static_cast<std::size_t>(i) + 1]; ++s)
+        sum += local[static_cast<std::size_t>(width * node_slots_[static_cast<std::size_t>(s)] + k)];
+      store(i, k, sum);
+    }
+}
+
+template <int d>
 void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
                                        int threads) const {
   constexpr int dd = k_sq(d);
   MESHMORPH_CHECK(action.K.size() == mesh_->cells.size() && v.size() == static_cast<Eigen::Index>(dofs_->n_free()),
                   "EnergyAssembler::apply_hessian: the action or v does not fit");
-  y.setZero(v.size());
+  std::vector<double>& local = action.local;
+  local.resize(static_cast<std::size_t>(d) * node_slots_.size());
   const std::int32_t* red = dofs_->reduced_index().data();
 #pragma omp parallel num_threads(threads_of(threads))
   {
@@ -319,147 +335,220 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
     for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
       const CellBlock& block = mesh_->cells[bi];
       const Eigen::MatrixXd& dN = targets_->blocks[bi].table->dN;  // n × dQ
-      const BlockPlan& plan = blocks_[bi];
       const int n = block.n_nodes_per_cell(), Q = targets_->blocks[bi].n_points();
+      const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
       const double* K = action.K[bi].data();
       const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * k_packed(dd); };
-      // Patches of one colour share no node (assemble()): their scatters never collide.
-      for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
-#pragma omp for schedule(dynamic, 1)
-        for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p) {
-          if constexpr (d == 3) {
-            if (const auto& t = action.tensor[bi]; t.P > 0) {
-              for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
-                const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
-                const std::int32_t* nodes = block.cell(c);
-                hex.u.resize(static_cast<std::size_t>(3 * n));
-                for (int l = 0; l < n; ++l)
-                  for (int k = 0; k < 3; ++k) {
-                    const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k];
-                    hex.u[static_cast<std::size_t>(3 * l + k)] = r >= 0 ? v[r] : 0.0;
-                  }
-                hex_kernel(t)(t, K_of(c), hex);
-                for (int l = 0; l < n; ++l)
-                  for (int k = 0; k < 3; ++k)
-                    if (const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k]; r >= 0)
-                      y[r] += hex.y[static_cast<std::size_t>(3 * l + k)];
+      // y_e of cell c, node a, component k.
+      double* out = local.data() + d * blocks_[bi].first_slot;
+      const auto y_of = [&](std::size_t c, int a, int k) -> double& { return out[(c * n + static_cast<std::size_t>(a)) * d + k]; };
+      if constexpr (d == 3) {
+        if (const auto& t = action.tensor[bi]; t.P > 0) {
+          const HexKernel kernel = hex_kernel(t);
+#pragma omp for schedule(static) nowait
+          for (std::ptrdiff_t ci = 0; ci < n_cells; ++ci) {
+            const auto c = static_cast<std::size_t>(ci);
+            const std::int32_t* nodes = block.cell(c);
+            hex.u.resize(static_cast<std::size_t>(3 * n));
+            for (int l = 0; l < n; ++l)
+              for (int k = 0; k < 3; ++k) {
+                const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k];
+                hex.u[static_cast<std::size_t>(3 * l + k)] = r >= 0 ? v[r] : 0.0;
               }
-              continue;
-            }
+            kernel(t, K_of(c), hex);
+            for (int l = 0; l < n; ++l)
+              for (int k = 0; k < 3; ++k) y_of(c, t.node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>(3 * l + k)];
           }
-          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
-            const int dn = d * n;
-            ue.resize(dn);
-            ye.resize(dn);
-            for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
-              const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
-              const std::int32_t* nodes = block.cell(c);
-              for (int a = 0; a < n; ++a)
-                for (int k = 0; k < d; ++k) {
-                  const std::int32_t r = red[d * nodes[a] + k];
-                  ue[k * n + a] = r >= 0 ? v[r] : 0.0;
-                }
-              packed_product(E.data() + c * static_cast<std::size_t>(k_packed(dn)), ue.data(), ye.data(), dn);
-              for (int a = 0; a < n; ++a)
-                for (int k = 0; k < d; ++k)
-                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += ye[k * n + a];
+          continue;
+        }
+      }
+      if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+        const int dn = d * n;
+        ue.resize(dn);
+        ye.resize(dn);
+#pragma omp for schedule(static) nowait
+        for (std::ptrdiff_t ci = 0; ci < n_cells; ++ci) {
+          const auto c = static_cast<std::size_t>(ci);
+          const std::int32_t* nodes = block.cell(c);
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k) {
+              const std::int32_t r = red[d * nodes[a] + k];
+              ue[k * n + a] = r >= 0 ? v[r] : 0.0;
             }
-            continue;
-          }
-          // Dense: the cells of a patch k_batch at a time, their nodal values stacked as the d·b
-          // rows of V, so that one product R = V ∇N over all points (the reference gradients
-          // G_q of cell e in rows d·e .. d·e + d − 1, column block q) and one back share the
-          // packing of ∇N; K_q applied per cell and point in between.
-          for (std::int32_t first = plan.patch_offset[p]; first < plan.patch_offset[p + 1]; first += k_batch) {
-            const int b = std::min<int>(k_batch, plan.patch_offset[p + 1] - first);
-            const auto cell_of = [&](int e) { return static_cast<std::size_t>(plan.order[static_cast<std::size_t>(first + e)]); };
-            V.resize(d * b, n);
-            for (int e = 0; e < b; ++e) {
-              const std::int32_t* nodes = block.cell(cell_of(e));
-              for (int a = 0; a < n; ++a)
-                for (int k = 0; k < d; ++k) {
-                  const std::int32_t r = red[d * nodes[a] + k];
-                  V(d * e + k, a) = r >= 0 ? v[r] : 0.0;
-                }
+          packed_product(E.data() + c * static_cast<std::size_t>(k_packed(dn)), ue.data(), ye.data(), dn);
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k) y_of(c, a, k) = ye[k * n + a];
+        }
+        continue;
+      }
+      // Dense: k_batch cells at a time, their nodal values stacked as the d·b rows of V, so
+      // that one product R = V ∇N over all points (the reference gradients G_q of cell e in
+      // rows d·e .. d·e + d − 1, column block q) and one back share the packing of ∇N; K_q
+      // applied per cell and point in between.
+      const std::ptrdiff_t n_batches = (n_cells + k_batch - 1) / k_batch;
+#pragma omp for schedule(static) nowait
+      for (std::ptrdiff_t batch = 0; batch < n_batches; ++batch) {
+        const std::size_t first = static_cast<std::size_t>(batch) * k_batch;
+        const int b = static_cast<int>(std::min<std::ptrdiff_t>(k_batch, n_cells - batch * k_batch));
+        V.resize(d * b, n);
+        for (int e = 0; e < b; ++e) {
+          const std::int32_t* nodes = block.cell(first + static_cast<std::size_t>(e));
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k) {
+              const std::int32_t r = red[d * nodes[a] + k];
+              V(d * e + k, a) = r >= 0 ? v[r] : 0.0;
             }
-            R.noalias() = V * dN;
-            for (int e = 0; e < b; ++e) {
-              const double* Kc = K_of(cell_of(e));
-              for (int q = 0; q < Q; ++q) {
-                Eigen::Matrix<double, dd, 1> g;
-                for (int j = 0; j < d; ++j)
-                  for (int k = 0; k < d; ++k) g[k + d * j] = R(d * e + k, q * d + j);
-                Eigen::Matrix<double, dd, 1> h;
-                packed_product<dd>(Kc + q * k_packed(dd), g.data(), h.data());
-                for (int j = 0; j < d; ++j)
-                  for (int k = 0; k < d; ++k) R(d * e + k, q * d + j) = h[k + d * j];
-              }
-            }
-            Y.noalias() = R * dN.transpose();
-            for (int e = 0; e < b; ++e) {
-              const std::int32_t* nodes = block.cell(cell_of(e));
-              for (int a = 0; a < n; ++a)
-                for (int k = 0; k < d; ++k)
-                  if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) y[r] += Y(d * e + k, a);
-            }
+        }
+        R.noalias() = V * dN;
+        for (int e = 0; e < b; ++e) {
+          const double* Kc = K_of(first + static_cast<std::size_t>(e));
+          for (int q = 0; q < Q; ++q) {
+            Eigen::Matrix<double, dd, 1> g;
+            for (int j = 0; j < d; ++j)
+              for (int k = 0; k < d; ++k) g[k + d * j] = R(d * e + k, q * d + j);
+            Eigen::Matrix<double, dd, 1> h;
+            packed_product<dd>(Kc + q * k_packed(dd), g.data(), h.data());
+            for (int j = 0; j < d; ++j)
+              for (int k = 0; k < d; ++k) R(d * e + k, q * d + j) = h[k + d * j];
           }
         }
+        Y.noalias() = R * dN.transpose();
+        for (int e = 0; e < b; ++e)
+          for (int a = 0; a < n; ++a)
+            for (int k = 0; k < d; ++k) y_of(first + static_cast<std::size_t>(e), a, k) = Y(d * e + k, a);
       }
     }
   }
+  y.setZero(static_cast<Eigen::Index>(dofs_->n_free()));
+  gather(local, d, threads, [&](std::ptrdiff_t i, int k, double sum) {
+    if (const std::int32_t r = red[d * i + k]; r >= 0) y[r] = sum;
+  });
+}
+
+template <int d>
+std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& action, int threads) const {
+  constexpr int dd = k_sq(d), pairs = k_packed(d);
+  MESHMORPH_CHECK(action.K.size() == mesh_->cells.size(), "EnergyAssembler::hessian_blocks: the action does not fit");
+  // Per cell and node the pairs (k, l), k ≤ l, of its block, packed by rows.
+  std::vector<double>& local = action.local;
+  local.resize(static_cast<std::size_t>(pairs) * node_slots_.size());
+  // S_jm^kl = K(k + dj, l + dm) + K(k + dm, l + dj) for j < m, K(k + dj, l + dj) for j = m:
+  // the block (k, l) of node a is Σ_q Σ_{j ≤ m} ∂_j N_a ∂_m N_a S_jm^kl.
+  const auto fields = [](const double* Kq, int j, int m, double* S) {
+    const auto at = [&](int r, int c) { return r <= c ? Kq[packed_index(dd, r, c)] : Kq[packed_index(dd, c, r)]; };
+    for (int k = 0, o = 0; k < d; ++k)
+      for (int l = k; l < d; ++l, ++o) S[o] = at(k + d * j, l + d * m) + (j < m ? at(k + d * m, l + d * j) : 0.0);
+  };
+#pragma omp parallel num_threads(threads_of(threads))
+  for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
+    const CellBlock& block = mesh_->cells[bi];
+    const ShapeTable& table = *targets_->blocks[bi].table;
+    const int n = block.n_nodes_per_cell(), Q = table.n_points();
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+    const double* K = action.K[bi].data();
+    const std::vector<double>& E = action.element[bi];
+    double* out = local.data() + pairs * blocks_[bi].first_slot;
+    const auto& t = action.tensor[bi];
+    // Sum factorization on hexahedra: ∂_j N_a ∂_m N_a at point q is a product of 1D tables,
+    // l_i l_i, l_i l_i' or l_i' l_i' in each direction, so each field is contracted in three
+    // 1D passes (O(m³P + m²P² + mP³) instead of O(m³P³)).
+    std::array<Eigen::MatrixXd, 3> table1d;  // l l, l l', l' l' (m × P)
+    if (t.P > 0) table1d = {t.B.cwiseProduct(t.B), t.B.cwiseProduct(t.D), t.D.cwiseProduct(t.D)};
+    std::vector<double> S, A, C;
+    Eigen::Matrix<double, pairs, Eigen::Dynamic> h;
+#pragma omp for schedule(static) nowait
+    for (std::ptrdiff_t ci = 0; ci < n_cells; ++ci) {
+      const auto c = static_cast<std::size_t>(ci);
+      double* y = out + c * static_cast<std::size_t>(n * pairs);  // node a, pair o at pairs·a + o
+      if (!E.empty()) {
+        const int dn = d * n;
+        const double* Ec = E.data() + c * static_cast<std::size_t>(k_packed(dn));
+        for (int a = 0; a < n; ++a)
+          for (int k = 0, o = 0; k < d; ++k)
+            for (int l = k; l < d; ++l, ++o) y[pairs * a + o] = Ec[packed_index(dn, k * n + a, l * n + a)];
+        continue;
+      }
+      const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
+      h.setZero(pairs, n);
+      if (t.P > 0) {
+        if constexpr (d == 3) {
+          const int P = t.P, m = t.m;
+          S.resize(static_cast<std::size_t>(pairs * Q));
+          A.resize(static_cast<std::size_t>(pairs * m * m * P));
+          C.resize(static_cast<std::size_t>(pairs * m * P * P));
+          for (int j = 0; j < d; ++j)
+            for (int mm = j; mm < d; ++mm) {
+              for (int q = 0; q < Q; ++q) fields(Kc + q * k_packed(dd), j, mm, &S[static_cast<std::size_t>(pairs * q)]);
+              const Eigen::MatrixXd& X = table1d[static_cast<std::size_t>((j == 0) + (mm == 0))];
+              const Eigen::MatrixXd& Y = table1d[static_cast<std::size_t>((j == 1) + (mm == 1))];
+              const Eigen::MatrixXd& Z = table1d[static_cast<std::size_t>((j == 2) + (mm == 2))];
+              std::fill(A.begin(), A.end(), 0.0);  // A(qx, qy, iz)
+              for (int qz = 0; qz < m; ++qz)
+                for (int iz = 0; iz < P; ++iz) {
+                  const double z = Z(qz, iz);
+                  for (int qxy = 0; qxy < m * m; ++qxy)
+                    for (int o = 0; o < pairs; ++o)
+                      A[static_cast<std::size_t>(pairs * (qxy + m * m * iz) + o)] += z * S[static_cast<std::size_t>(pairs * (qxy + m * m * qz) + o)];
+                }
+              std::fill(C.begin(), C.end(), 0.0);  // C(qx, iy, iz)
+              for (int iz = 0; iz < P; ++iz)
+                for (int qy = 0; qy < m; ++qy)
+                  for (int iy = 0; iy < P; ++iy) {
+                    const double yv = Y(qy, iy);
+                    for (int qx = 0; qx < m; ++qx)
+                      for (int o = 0; o < pairs; ++o)
+                        C[static_cast<std::size_t>(pairs * (qx + m * (iy + P * iz)) + o)] +=
+                            yv * A[static_cast<std::size_t>(pairs * (qx + m * (qy + m * iz)) + o)];
+                  }
+              for (int iz = 0; iz < P; ++iz)
+                for (int iy = 0; iy < P; ++iy)
+                  for (int ix = 0; ix < P; ++ix) {
+                    const int a = t.node[static_cast<std::size_t>(ix + P * (iy + P * iz))];
+                    for (int qx = 0; qx < m; ++qx) {
+                      const double xv = X(qx, ix);
+                      for (int o = 0; o < pairs; ++o) h(o, a) += xv * C[static_cast<std::size_t>(pairs * (qx + m * (iy + P * iz)) + o)];
+                    }
+                  }
+            }
+        }
+      } else {
+        double Sq[pairs];
+        for (int q = 0; q < Q; ++q) {
+          const double* dNq = table.dN.data() + static_cast<std::ptrdiff_t>(q) * d * n;  // column q·d + j at j·n
+          for (int j = 0; j < d; ++j)
+            for (int mm = j; mm < d; ++mm) {
+              fields(Kc + q * k_packed(dd), j, mm, Sq);
+              for (int a = 0; a < n; ++a) {
+                const double w = dNq[j * n + a] * dNq[mm * n + a];
+                for (int o = 0; o < pairs; ++o) h(o, a) += w * Sq[o];
+              }
+            }
+        }
+      }
+      for (int a = 0; a < n; ++a)
+        for (int o = 0; o < pairs; ++o) y[pairs * a + o] = h(o, a);
+    }
+  }
+  std::vector<double> blocks(mesh_->n_nodes() * static_cast<std::size_t>(dd));
+  std::array<std::array<int, 2>, pairs> pair;  // pair o = (k, l), packed by rows
+  for (int k = 0, o = 0; k < d; ++k)
+    for (int l = k; l < d; ++l, ++o) pair[static_cast<std::size_t>(o)] = {k, l};
+  gather(local, pairs, threads, [&](std::ptrdiff_t i, int o, double sum) {
+    const auto [k, l] = pair[static_cast<std::size_t>(o)];
+    double* b = blocks.data() + static_cast<std::size_t>(i) * dd;
+    b[k + d * l] = b[l + d * k] = sum;
+  });
+  return blocks;
 }
 
 template <int d>
 Eigen::VectorXd EnergyAssembler<d>::hessian_diagonal(const HessianAction<d>& action, int threads) const {
-  constexpr int dd = k_sq(d);
-  MESHMORPH_CHECK(action.K.size() == mesh_->cells.size(), "EnergyAssembler::hessian_diagonal: the action does not fit");
-  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs_->n_free()));
+  const std::vector<double> blocks = hessian_blocks(action, threads);
+  Eigen::VectorXd diagonal(static_cast<Eigen::Index>(dofs_->n_free()));
   const std::int32_t* red = dofs_->reduced_index().data();
-#pragma omp parallel num_threads(threads_of(threads))
-  for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
-    Eigen::Matrix<double, d, Eigen::Dynamic> h;
-    const CellBlock& block = mesh_->cells[bi];
-    const ShapeTable& table = *targets_->blocks[bi].table;
-    const BlockPlan& plan = blocks_[bi];
-    const int n = block.n_nodes_per_cell(), Q = table.n_points();
-    const double* K = action.K[bi].data();
-    for (std::size_t color = 0; color + 1 < plan.color_offset.size(); ++color) {
-#pragma omp for schedule(dynamic, 1)
-      for (std::int32_t p = plan.color_offset[color]; p < plan.color_offset[color + 1]; ++p)
-        for (std::int32_t i = plan.patch_offset[p]; i < plan.patch_offset[p + 1]; ++i) {
-          const auto c = static_cast<std::size_t>(plan.order[static_cast<std::size_t>(i)]);
-          const std::int32_t* nodes = block.cell(c);
-          if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
-            const int dn = d * n;
-            for (int a = 0; a < n; ++a)
-              for (int k = 0; k < d; ++k)
-                if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0)
-                  diagonal[r] += E[c * static_cast<std::size_t>(k_packed(dn)) + static_cast<std::size_t>(packed_index(dn, k * n + a, k * n + a))];
-            continue;
-          }
-          const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
-          h.setZero(d, n);
-          for (int q = 0; q < Q; ++q) {
-            // The blocks K_q(k + dj, k + dm), j ≤ m, off-diagonal ones doubled (they appear twice).
-            const double* Kq = Kc + q * k_packed(dd);
-            double kk[d][d][d];
-            for (int k = 0; k < d; ++k)
-              for (int j = 0; j < d; ++j)
-                for (int m = j; m < d; ++m) kk[k][j][m] = (j == m ? 1.0 : 2.0) * Kq[packed_index(dd, k + d * j, k + d * m)];
-            const double* dNq = table.dN.data() + static_cast<std::ptrdiff_t>(q) * d * n;  // column q·d + j at j·n
-            for (int a = 0; a < n; ++a)
-              for (int j = 0; j < d; ++j)
-                for (int m = j; m < d; ++m) {
-                  const double w = dNq[j * n + a] * dNq[m * n + a];
-                  for (int k = 0; k < d; ++k) h(k, a) += w * kk[k][j][m];
-                }
-          }
-          for (int a = 0; a < n; ++a)
-            for (int k = 0; k < d; ++k)
-              if (const std::int32_t r = red[d * nodes[a] + k]; r >= 0) diagonal[r] += h(k, a);
-        }
-    }
-  }
+  for (std::size_t i = 0; i < mesh_->n_nodes(); ++i)
+    for (int k = 0; k < d; ++k)
+      if (const std::int32_t r = red[d * i + k]; r >= 0) diagonal[r] = blocks[i * d * d + static_cast<std::size_t>(k * (d + 1))];
   return diagonal;
 }
 

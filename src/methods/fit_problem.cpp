@@ -251,6 +251,34 @@ void FitProblem<d>::project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& 
 }
 
 template <int d>
+typename FitProblem<d>::SlideFrame FitProblem<d>::slide_frame(const SlideNode& s, const Eigen::Matrix<double, d, d>& B,
+                                                             const Eigen::Matrix<double, d, 1>& g, HessianMode mode) const {
+  SlideFrame f;
+  // One surface: its level set says which normals bind the step (more at a crease it keeps to).
+  if (s.m == 1) f.N = s.sigma[0]->step_normals(x_.col(s.node), g);
+  else f.N = normals(s, x_);
+  f.P = Eigen::Matrix<double, d, d>::Identity() - f.N * f.N.transpose();
+  const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
+  Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
+  for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
+  const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
+  Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
+  for (int i = 0; i < s.m && f.N.cols() == s.m; ++i) {  // kept to a crease: its curvature is left out
+    const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
+    if (hs.allFinite()) K -= lambda[i] * f.P * hs * f.P;
+  }
+  if (mode == HessianMode::Projected) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, d, d>> eig(0.5 * (K + K.transpose()));
+    K = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  }
+  // A node held at a corner of a crease (no tangent left) keeps the mean diagonal of B.
+  const double tangential = (f.P * B * f.P).trace();
+  const double c = f.N.cols() == d ? B.trace() / d : tangential > 0.0 ? tangential / static_cast<double>(d - f.N.cols()) : 1.0;
+  f.add = K + c * f.N * f.N.transpose();
+  return f;
+}
+
+template <int d>
 void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
   Eigen::SparseMatrix<double>& H = out.hessian;
   if (slide_offsets_.empty()) {
@@ -258,24 +286,17 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     for (const SlideNode& s : slides_) nodes.push_back(s.node);
     slide_offsets_ = node_blocks(H, nodes);
   }
-  std::vector<Eigen::Matrix<double, d, d>> P(slides_.size());
-  std::vector<Eigen::Matrix<double, d, Eigen::Dynamic>> N(slides_.size());
-  for (std::size_t k = 0; k < slides_.size(); ++k) {
-    // One surface: its level set says which normals bind the step (more at a crease it keeps to).
-    const SlideNode& s = slides_[k];
-    if (s.m == 1) N[k] = s.sigma[0]->step_normals(x_.col(s.node), out.gradient.segment<d>(s.first));
-    else N[k] = normals(s, x_);
-    P[k] = Eigen::Matrix<double, d, d>::Identity() - N[k] * N[k].transpose();
-  }
   const int* outer = H.outerIndexPtr();
   const int* inner = H.innerIndexPtr();
   double* values = H.valuePtr();
-  // The mean diagonal of a node held at a corner of a crease (no tangent left), taken before
-  // its rows and columns vanish.
-  std::vector<double> held_stiffness(slides_.size(), 0.0);
-  for (std::size_t k = 0; k < slides_.size(); ++k)
-    if (N[k].cols() == d)
-      for (int i = 0; i < d; ++i) held_stiffness[k] += values[slide_offsets_[k * d * d + static_cast<std::size_t>(i * d + i)]] / d;
+  frames_.resize(slides_.size());
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    const std::int64_t* o = slide_offsets_.data() + k * d * d;
+    Eigen::Matrix<double, d, d> B;
+    for (int l = 0; l < d; ++l)
+      for (int i = 0; i < d; ++i) B(i, l) = values[o[l * d + i]];
+    frames_[k] = slide_frame(slides_[k], B, out.gradient.segment<d>(slides_[k].first), mode);
+  }
   // Rows: the d rows of a slide node are consecutive in every column that holds them.
   const auto n_cols = static_cast<std::ptrdiff_t>(H.outerSize());
 #pragma omp parallel for num_threads(options_.threads > 0 ? options_.threads : omp_get_max_threads()) schedule(static)
@@ -283,7 +304,7 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     for (int t = outer[col]; t < outer[col + 1]; ++t)
       if (const std::int32_t k = slide_of_row_[static_cast<std::size_t>(inner[t])]; k >= 0) {
         Eigen::Map<Eigen::Matrix<double, d, 1>> v(values + t);
-        v = P[static_cast<std::size_t>(k)] * v;
+        v = frames_[static_cast<std::size_t>(k)].P * v;
         t += d - 1;
       }
   // Columns: the d columns of a node share their row pattern.
@@ -292,39 +313,16 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     for (int t = 0; t < len; ++t) {
       Eigen::Matrix<double, d, 1> v;
       for (int l = 0; l < d; ++l) v[l] = values[outer[c0 + l] + t];
-      v = P[k] * v;
+      v = frames_[k].P * v;
       for (int l = 0; l < d; ++l) values[outer[c0 + l] + t] = v[l];
     }
   }
-  // Diagonal blocks: stiffness c along the normals, curvature of the constraints.
   for (std::size_t k = 0; k < slides_.size(); ++k) {
-    const SlideNode& s = slides_[k];
     const std::int64_t* o = slide_offsets_.data() + k * d * d;
-    Eigen::Matrix<double, d, d> B;
     for (int l = 0; l < d; ++l)
-      for (int i = 0; i < d; ++i) B(i, l) = values[o[l * d + i]];
-    const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
-    const Eigen::Matrix<double, d, 1> g = out.gradient.segment<d>(s.first);
-    Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
-    for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
-    const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
-    Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
-    for (int i = 0; i < s.m && N[k].cols() == s.m; ++i) {  // kept to a crease: its curvature is left out
-      const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
-      if (hs.allFinite()) K -= lambda[i] * P[k] * hs * P[k];
-    }
-    if (mode == HessianMode::Projected) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, d, d>> eig(0.5 * (K + K.transpose()));
-      K = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
-    }
-    const double c = N[k].cols() == d ? held_stiffness[k] : B.trace() > 0.0 ? B.trace() / static_cast<double>(d - N[k].cols()) : 1.0;
-    B += K + c * N[k] * N[k].transpose();
-    for (int l = 0; l < d; ++l)
-      for (int i = 0; i < d; ++i) values[o[l * d + i]] = B(i, l);
-  }
-  for (std::size_t k = 0; k < slides_.size(); ++k) {
+      for (int i = 0; i < d; ++i) values[o[l * d + i]] += frames_[k].add(i, l);
     auto g = out.gradient.segment<d>(slides_[k].first);
-    g -= N[k] * (N[k].transpose() * g);
+    g -= frames_[k].N * (frames_[k].N.transpose() * g);
   }
 }
 
@@ -367,23 +365,66 @@ void FitProblem<d>::evaluate(HessianMode mode, Assembly& out) {
 
 template <int d>
 void FitProblem<d>::evaluate_action(HessianMode mode, Assembly& out) {
-  MESHMORPH_CHECK(terms_->empty() && slides_.empty(), "FitProblem: the matrix-free Hessian has no fitted or slide nodes");
+  MESHMORPH_CHECK(terms_->empty(), "FitProblem: the matrix-free Hessian has no fitted nodes");
   AssemblyOptions o;
   o.want = Want::Gradient;
   o.threads = options_.threads;
   assembler_->assemble(*metric_, x_, o, out);
   if (std::isfinite(out.value) && !assembler_->prepare_hessian(*metric_, x_, mode, options_.threads, action_))
     out.value = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(out.value)) return;
+  node_blocks_ = assembler_->hessian_blocks(action_, options_.threads);
+  frames_.resize(slides_.size());
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    const SlideNode& s = slides_[k];
+    const Eigen::Map<const Eigen::Matrix<double, d, d>> B(node_blocks_.data() + static_cast<std::size_t>(s.node) * d * d);
+    frames_[k] = slide_frame(s, B, out.gradient.segment<d>(s.first), mode);
+    auto g = out.gradient.segment<d>(s.first);
+    g -= frames_[k].N * (frames_[k].N.transpose() * g);
+  }
 }
 
 template <int d>
 void FitProblem<d>::apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-  assembler_->apply_hessian(action_, v, y, options_.threads);
+  if (slides_.empty()) {
+    assembler_->apply_hessian(action_, v, y, options_.threads);
+    return;
+  }
+  // (P H P + the frames' additions) v, P the slide nodes' tangent projections.
+  slide_v_ = v;
+  for (std::size_t k = 0; k < slides_.size(); ++k) slide_v_.segment<d>(slides_[k].first) = frames_[k].P * v.segment<d>(slides_[k].first);
+  assembler_->apply_hessian(action_, slide_v_, y, options_.threads);
+  for (std::size_t k = 0; k < slides_.size(); ++k) {
+    auto yk = y.segment<d>(slides_[k].first);
+    yk = frames_[k].P * yk + frames_[k].add * v.segment<d>(slides_[k].first);
+  }
 }
 
 template <int d>
-Eigen::VectorXd FitProblem<d>::hessian_diagonal() {
-  return assembler_->hessian_diagonal(action_, options_.threads);
+HessianBlocks FitProblem<d>::hessian_blocks() {
+  HessianBlocks b;
+  b.size = d;
+  const std::int32_t* red = dofs_.reduced_index().data();
+  std::vector<std::int32_t> slide_of_node(mesh_->n_nodes(), -1);
+  for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_node[static_cast<std::size_t>(slides_[k].node)] = static_cast<std::int32_t>(k);
+  for (std::size_t i = 0; i < mesh_->n_nodes(); ++i) {
+    int free[d], m = 0;
+    for (int k = 0; k < d; ++k)
+      if (red[d * i + k] >= 0) free[m++] = k;
+    if (m == 0) continue;
+    b.first.push_back(red[d * i + free[0]]);
+    Eigen::Matrix<double, d, d> B = Eigen::Map<const Eigen::Matrix<double, d, d>>(node_blocks_.data() + i * d * d);
+    if (const std::int32_t k = slide_of_node[i]; k >= 0) {
+      const SlideFrame& f = frames_[static_cast<std::size_t>(k)];
+      B = f.P * B * f.P + f.add;
+    }
+    const std::size_t at = b.values.size();
+    b.values.resize(at + d * d, 0.0);
+    for (int l = 0; l < m; ++l)
+      for (int r = 0; r < m; ++r) b.values[at + static_cast<std::size_t>(r + d * l)] = B(free[r], free[l]);
+  }
+  b.first.push_back(static_cast<std::int32_t>(dofs_.n_free()));
+  return b;
 }
 
 template <int d>

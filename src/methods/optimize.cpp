@@ -52,11 +52,6 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
     const bool large = n_free >= (hexahedra ? k_optimize_matrix_free_dofs : k_optimize_matrix_free_dofs_any);
     kind = large ? OptimizeSolver::MatrixFree : OptimizeSolver::Cholesky;
   }
-  if (kind == OptimizeSolver::MatrixFree && !slides.empty()) {
-    // CHOLMOD's memory grows too fast beyond 400k unknowns.
-    kind = n_free <= 400000 ? OptimizeSolver::Cholesky : OptimizeSolver::Iterative;
-    log_progress("optimize: the matrix-free solver does not handle sliding nodes yet; assembled Hessians instead");
-  }
   const std::vector<FitTerm> no_terms;
   OptimizeResult result;
   FitProblem<d> P(mesh, topology, no_terms, fixed, fo, x, slides, kind == OptimizeSolver::MatrixFree);

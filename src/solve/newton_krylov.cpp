@@ -2,6 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+
+#include <Eigen/Eigenvalues>
 
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
@@ -16,13 +19,54 @@ struct CgResult {
   bool curvature = false;  // stopped at a direction of nonpositive curvature
 };
 
-// Jacobi-preconditioned CG on H p = b from p = 0, truncated at nonpositive curvature
+// The inverses of H's node blocks, each made positive definite: eigenvalues λ → max(|λ|, floor),
+// floor 1e-3 of the mean |H_ii|, so that the null rows of a projected Hessian stay
+// preconditioned (as newton()'s shift scales).
+class BlockJacobi {
+ public:
+  explicit BlockJacobi(HessianBlocks blocks) : b_(std::move(blocks)) {
+    const int s = b_.size;
+    const auto n_blocks = static_cast<std::ptrdiff_t>(b_.first.size()) - 1;
+    double sum = 0.0;
+    for (std::ptrdiff_t b = 0; b < n_blocks; ++b)
+      for (int i = 0; i < size(b); ++i) sum += std::abs(b_.values[static_cast<std::size_t>(b * s * s + i * (s + 1))]);
+    const std::int32_t n = b_.first.empty() ? 0 : b_.first.back();
+    const double floor = 1e-3 * (n > 0 && sum > 0.0 ? sum / n : 1.0);
+    for (std::ptrdiff_t b = 0; b < n_blocks; ++b) {
+      const int m = size(b);
+      Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>> B(b_.values.data() + b * s * s, m, m, Eigen::OuterStride<>(s));
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(B);
+      B = eig.eigenvectors() * eig.eigenvalues().cwiseAbs().cwiseMax(floor).cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    }
+  }
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+    const int s = b_.size;
+    z.resize(r.size());
+    for (std::ptrdiff_t b = 0; b + 1 < static_cast<std::ptrdiff_t>(b_.first.size()); ++b) {
+      const int m = size(b), f = b_.first[static_cast<std::size_t>(b)];
+      const double* inv = b_.values.data() + b * s * s;
+      for (int i = 0; i < m; ++i) {
+        double sum = 0.0;
+        for (int j = 0; j < m; ++j) sum += inv[i + s * j] * r[f + j];
+        z[f + i] = sum;
+      }
+    }
+  }
+
+ private:
+  int size(std::ptrdiff_t b) const { return b_.first[static_cast<std::size_t>(b) + 1] - b_.first[static_cast<std::size_t>(b)]; }
+  HessianBlocks b_;
+};
+
+// Block-Jacobi-preconditioned CG on H p = b from p = 0, truncated at nonpositive curvature
 // (Steihaug): p is then the last iterate, a descent direction for −b, or none (iterations 0).
-CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const Eigen::VectorXd& inverse_diagonal, const Eigen::VectorXd& b,
+CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const BlockJacobi& preconditioner, const Eigen::VectorXd& b,
                       double rtol, int max_iterations, Eigen::VectorXd& p) {
   CgResult result;
   p.setZero(b.size());
-  Eigen::VectorXd r = b, z = inverse_diagonal.cwiseProduct(r), s = z, Hs(b.size());
+  Eigen::VectorXd r = b, z, s, Hs(b.size());
+  preconditioner.apply(r, z);
+  s = z;
   double rz = r.dot(z);
   const double target = rtol * b.norm();
   while (result.iterations < max_iterations) {
@@ -40,19 +84,12 @@ CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const Eigen::VectorXd& i
       result.converged = true;
       return result;
     }
-    z = inverse_diagonal.cwiseProduct(r);
+    preconditioner.apply(r, z);
     const double rz_next = r.dot(z);
     s = z + (rz_next / rz) * s;
     rz = rz_next;
   }
   return result;
-}
-
-// 1/|H_ii|, with |H_ii| at least 1e-3 of its mean, so that the null rows of a projected Hessian
-// stay preconditioned (as newton()'s shift scales).
-Eigen::VectorXd jacobi(const Eigen::VectorXd& diagonal) {
-  const double mean = diagonal.size() > 0 && diagonal.cwiseAbs().mean() > 0.0 ? diagonal.cwiseAbs().mean() : 1.0;
-  return diagonal.cwiseAbs().cwiseMax(1e-3 * mean).cwiseInverse();
 }
 
 }  // namespace
@@ -76,7 +113,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       forcing = std::clamp(next, krylov.min_forcing, krylov.max_forcing);
     }
     previous_norm = norm;
-    CgResult cg = truncated_cg(problem, jacobi(problem.hessian_diagonal()), -a.gradient, forcing, krylov.max_iterations, p);
+    CgResult cg = truncated_cg(problem, BlockJacobi(problem.hessian_blocks()), -a.gradient, forcing, krylov.max_iterations, p);
     ++stats.linear_solves;
     stats.krylov_iterations += cg.iterations;
     if (exact && cg.curvature && cg.iterations == 0) {
@@ -85,7 +122,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       log_detail("newton: the exact Hessian is not positive definite along the gradient; projected steps");
       exact = exact_ready = false;
       problem.evaluate_action(HessianMode::Projected, a);
-      cg = truncated_cg(problem, jacobi(problem.hessian_diagonal()), -a.gradient, forcing, krylov.max_iterations, p);
+      cg = truncated_cg(problem, BlockJacobi(problem.hessian_blocks()), -a.gradient, forcing, krylov.max_iterations, p);
       ++stats.linear_solves;
       stats.krylov_iterations += cg.iterations;
     }

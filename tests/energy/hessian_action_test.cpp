@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// EnergyAssembler's matrix-free Hessian (prepare_hessian, apply_hessian, hessian_diagonal)
+// EnergyAssembler's matrix-free Hessian (prepare_hessian, apply_hessian, hessian_blocks)
 // against the assembled one.
 #include <cstring>
 #include <random>
@@ -44,7 +44,17 @@ void action_matches_assembly(ElementType type, int order, bool fix_boundary,
     EXPECT_LE((y - expected).norm(), 1e-12 * expected.norm());
     const Eigen::VectorXd diagonal = assembler.hessian_diagonal(action);
     EXPECT_LE((diagonal - Eigen::VectorXd(a.hessian.diagonal())).norm(), 1e-12 * diagonal.norm());
-    // Coloured like assemble(): the thread count does not change a bit.
+    // The node blocks: the assembled Hessian's d × d blocks of free DOFs.
+    const std::vector<double> blocks = assembler.hessian_blocks(action);
+    double block_error = 0.0;
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+      for (int k = 0; k < d; ++k)
+        for (int l = 0; l < d; ++l) {
+          const std::int32_t r = dofs.reduced(d * i + k), c = dofs.reduced(d * i + l);
+          if (r >= 0 && c >= 0) block_error = std::max(block_error, std::abs(blocks[i * d * d + k + d * l] - a.hessian.coeff(r, c)));
+        }
+    EXPECT_LE(block_error, 1e-12 * diagonal.cwiseAbs().maxCoeff());
+    // Gathered node by node in cell order: the thread count does not change a bit.
     Eigen::VectorXd y1, y2;
     assembler.apply_hessian(action, v, y1, 1);
     assembler.apply_hessian(action, v, y2, 2);

@@ -55,6 +55,9 @@ struct HessianAction {
     std::vector<std::int32_t> node;   ///< local node of lattice index i + P(j + P k)
   };
   std::vector<Tensor> tensor;
+  /// apply_hessian's and hessian_diagonal's per-cell results before they are gathered by node
+  /// (scratch, reused between calls: one product at a time per action).
+  mutable std::vector<double> local;
 };
 
 /// Assembles the energy Σ_e ω_e E_e of a metric over all cells of a mesh, with its gradient
@@ -97,12 +100,16 @@ class EnergyAssembler {
   /// y = H v for the Hessian H over the free DOFs that `action` holds: the product of
   /// assemble()'s Hessian and v to rounding, element by element
   /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ, by sum factorization on hexahedra; H_e v_e on
-  /// simplices), coloured as
-  /// assemble(), so bit-for-bit the same for any thread count. `v` and `y` have n_free entries.
+  /// simplices). The cells' y_e are stored, then gathered node by node in cell order (one
+  /// barrier, not one per colour), so y is bit-for-bit the same for any thread count. `v` and
+  /// `y` have n_free entries.
   void apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
                      int threads = 0) const;
-  /// The diagonal of that H, without forming H: H_ii = Σ_q Σ_jm ∂_j N_a K_q(k + dj, k + dm) ∂_m N_a
-  /// for DOF i = (node a, component k).
+  /// The node blocks of that H, without forming H: for node a, entry (k, l) =
+  /// Σ_e Σ_q Σ_jm ∂_j N_a K_q(k + dj, l + dm) ∂_m N_a (by sum factorization on hexahedra),
+  /// d × d column-major at a·d², for every node (rows and columns of fixed DOFs included).
+  std::vector<double> hessian_blocks(const HessianAction<d>& action, int threads = 0) const;
+  /// The diagonal of that H over the free DOFs (of hessian_blocks()).
   Eigen::VectorXd hessian_diagonal(const HessianAction<d>& action, int threads = 0) const;
 
   const DofMap& dofs() const { return *dofs_; }
@@ -118,13 +125,20 @@ class EnergyAssembler {
     std::vector<std::int32_t> patch_offset;  // patch p: cells order[patch_offset[p] .. [p+1])
     std::vector<std::int32_t> order;         // cells patch by patch, patches sorted by colour
     std::vector<std::int32_t> scatter;       // n_cells × n × n: offset of node a in column block of b
+    std::int64_t first_slot = 0;             // slot of (cell 0, node 0): slots run over blocks, cells, nodes
   };
+  // store(i, k, Σ over the slots s of node i of local[width·s + k]) for k < width: the gather
+  // of per-cell products (slots of node i: node_slots_[node_slot_offset_[i] .. [i+1]), in
+  // slot order whatever the threads).
+  template <class Store>
+  void gather(const std::vector<double>& local, int width, int threads, Store store) const;
   const Mesh* mesh_;
   const TargetField<d>* targets_;
   const DofMap* dofs_;
   std::size_t n_cells_ = 0;
   std::vector<BlockPlan> blocks_;
   std::vector<int> outer_, inner_;  // the reduced Hessian's CSC pattern (Assembly::hessian copies it)
+  std::vector<std::int64_t> node_slot_offset_, node_slots_;
 };
 
 }  // namespace meshmorph

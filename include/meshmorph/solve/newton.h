@@ -26,16 +26,25 @@ class NewtonProblem {
   virtual void accept(const Eigen::VectorXd& p, double alpha) = 0;
 };
 
+/// Diagonal blocks of a Hessian over the free DOFs: block b covers the consecutive DOFs
+/// first[b] .. first[b + 1] − 1 (at most `size`: a node's) and holds their entries
+/// column-major at values[b·size²], leading dimension `size`.
+struct HessianBlocks {
+  int size = 1;
+  std::vector<std::int32_t> first;
+  std::vector<double> values;
+};
+
 /// A NewtonProblem whose Hessian is available as an operator (for newton_matrix_free()).
 class MatrixFreeNewtonProblem : public NewtonProblem {
  public:
   /// Value and gradient at the current iterate (`out.hessian` untouched) and the set-up of
-  /// the Hessian's action in `mode`, for apply_hessian() and hessian_diagonal().
+  /// the Hessian's action in `mode`, for apply_hessian() and hessian_blocks().
   virtual void evaluate_action(HessianMode mode, Assembly& out) = 0;
   /// y = H v with the Hessian of the last evaluate_action().
   virtual void apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) = 0;
-  /// The diagonal of that Hessian.
-  virtual Eigen::VectorXd hessian_diagonal() = 0;
+  /// The node blocks of that Hessian (the preconditioner's).
+  virtual HessianBlocks hessian_blocks() = 0;
 };
 
 struct NewtonOptions {
@@ -107,7 +116,8 @@ struct KrylovNewtonOptions {
 };
 
 /// Inexact Newton with the Hessian as an operator (no matrix): each step solves H p = −g by
-/// conjugate gradients preconditioned by diag(H) from p = 0, to the relative residual η_k of
+/// conjugate gradients preconditioned by H's node blocks (block Jacobi, each block's
+/// eigenvalues taken in modulus, at least 1e-3 of the mean |H_ii|) from p = 0, to the relative residual η_k of
 /// KrylovNewtonOptions. Every CG iterate before a direction of nonpositive curvature is a
 /// descent direction (Dembo–Steihaug), and the step is the last of them. With
 /// NewtonOptions::exact_first the exact Hessian is used once a projected step was taken in

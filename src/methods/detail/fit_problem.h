@@ -31,7 +31,8 @@ namespace meshmorph {
 /// |P g| but at the creases of a facet surface (geometry/facet_surface.h).
 ///
 /// Matrix-free (evaluate_action(), for newton_matrix_free()): the metric Hessian as an
-/// operator (EnergyAssembler::prepare_hessian), without fitted nodes or slides (throws
+/// operator (EnergyAssembler::prepare_hessian), slides applied as above to its action
+/// (P H P v plus the diagonal blocks' additions), without fitted nodes (throws
 /// std::invalid_argument otherwise). Constructed with `matrix_free`, the problem holds no
 /// sparse pattern and evaluate() throws.
 template <int d>
@@ -79,7 +80,7 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   void accept(const Eigen::VectorXd& p, double alpha) override;
   void evaluate_action(HessianMode mode, Assembly& out) override;
   void apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) override;
-  Eigen::VectorXd hessian_diagonal() override;
+  HessianBlocks hessian_blocks() override;
 
  private:
   void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
@@ -96,6 +97,15 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   Eigen::Matrix<double, d, Eigen::Dynamic> normals(const SlideNode& s, const Eigen::MatrixXd& x) const;
   bool project_slides(Eigen::MatrixXd& x) const;  // false when a node cannot be projected
   void project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const;
+  // A slide node's step constraints: N (the normals that bind its step), P = I − N Nᵀ and
+  // the addition to its diagonal block K + c N Nᵀ (constraint curvature, normal stiffness),
+  // from its unconstrained diagonal block B and gradient g at the current iterate.
+  struct SlideFrame {
+    Eigen::Matrix<double, d, Eigen::Dynamic> N;
+    Eigen::Matrix<double, d, d> P, add;
+  };
+  SlideFrame slide_frame(const SlideNode& s, const Eigen::Matrix<double, d, d>& B, const Eigen::Matrix<double, d, 1>& g,
+                         HessianMode mode) const;
   void constrain_hessian(HessianMode mode, Assembly& out);
   bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
 
@@ -111,6 +121,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   std::unique_ptr<EnergyAssembler<d>> assembler_;
   std::unique_ptr<Metric<d>> metric_;
   HessianAction<d> action_;  // of the last evaluate_action()
+  std::vector<double> node_blocks_;  // its node blocks (EnergyAssembler::hessian_blocks)
+  std::vector<SlideFrame> frames_;   // of each slide node, at the last evaluate() or evaluate_action()
+  Eigen::VectorXd slide_v_;          // apply_hessian's projected v
   // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
   // the Hessian's value array, −1 for a fixed DOF.
   std::vector<std::int64_t> block_offsets_;
