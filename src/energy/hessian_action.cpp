@@ -2,6 +2,7 @@
 // Partial assembly of EnergyAssembler's Hessian: K_q per quadrature point, and its action.
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -23,26 +24,28 @@ constexpr int k_packed(int dd) { return dd * (dd + 1) / 2; }
 // h = K g for K packed as k_packed(dd): K is read once, which bounds a matrix-free product (the
 // K of every point are the bulk of its memory traffic).
 template <int dd>
-inline void packed_product(const double* K, const double* g, double* h) {
+inline void packed_product(const float* K, const double* g, double* h) {
   for (int i = 0; i < dd; ++i) h[i] = 0.0;
   for (int i = 0, o = 0; i < dd; ++i) {
-    h[i] += K[o++] * g[i];
+    h[i] += double(K[o++]) * g[i];
     for (int j = i + 1; j < dd; ++j, ++o) {
-      h[i] += K[o] * g[j];
-      h[j] += K[o] * g[i];
+      const double k = K[o];
+      h[i] += k * g[j];
+      h[j] += k * g[i];
     }
   }
 }
 
 // h = K g for a packed symmetric n × n K (as packed_product, n at run time).
-inline void packed_product(const double* K, const double* g, double* h, int n) {
+inline void packed_product(const float* K, const double* g, double* h, int n) {
   for (int i = 0; i < n; ++i) h[i] = 0.0;
   for (int i = 0; i < n; ++i) {
     const double gi = g[i];
-    double hi = h[i] + K[0] * gi;
+    double hi = h[i] + double(K[0]) * gi;
     for (int j = i + 1; j < n; ++j) {
-      hi += K[j - i] * g[j];
-      h[j] += K[j - i] * gi;
+      const double k = K[j - i];
+      hi += k * g[j];
+      h[j] += k * gi;
     }
     h[i] = hi;
     K += n - i;
@@ -126,104 +129,142 @@ typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const S
   return t;
 }
 
-// Work space of hex_action.
+constexpr int k_lanes = HessianAction<3>::k_lanes;
+
+// The packed K_q of cell c at point q in a block's K (HessianAction::K): its first entry and
+// the stride between entries (k_lanes where the cells are interleaved by lanes, else 1).
+template <int d, class T>
+std::pair<T*, int> point_entries(T* K, bool lanes, std::size_t c, int Q, int q) {
+  constexpr auto n = static_cast<std::size_t>(k_packed(d * d));
+  if (!lanes) return {K + (c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)) * n, 1};
+  const std::size_t batch = c / k_lanes, lane = c % k_lanes;
+  return {K + ((batch * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)) * n) * k_lanes + lane, k_lanes};
+}
+
+// Work space of hex_action: u, y and the 1D passes' fields, each entry k_lanes wide.
 struct HexScratch {
   std::vector<double> u, y, A0, A1, C00, C01, C10, E00, E01, E10, F0, F1;
 };
 
-// y_e = Σ_q mat(K_q vec(G_q)) ∇N_qᵀ on one hexahedron by sum factorization: the gradients G_q of
-// the three components at the m³ points in three 1D passes (x, y, then z: O(m P³ + m² P² + m³ P)
-// instead of O(m³ P³)), K_q point by point, and the transposed passes back. u and y: the nodal
-// values in lattice order, component fastest.
+// k_lanes doubles, one per cell of a batch: a GCC/Clang vector, so that every operation of
+// hex_action is one SIMD instruction (or two, where registers are half as wide); unaligned
+// and free to alias the doubles it is read from.
+using Lanes = double __attribute__((vector_size(k_lanes * sizeof(double)), aligned(sizeof(double)), may_alias));
+using FloatLanes = float __attribute__((vector_size(k_lanes * sizeof(float)), aligned(sizeof(float)), may_alias));
+
+// y_e = Σ_q mat(K_q vec(G_q)) ∇N_qᵀ on k_lanes hexahedra at once by sum factorization: the
+// gradients G_q of the three components at the m³ points in three 1D passes (x, y, then z:
+// O(m P³ + m² P² + m³ P) instead of O(m³ P³)), K_q point by point, and the transposed passes
+// back; each value is Lanes. u and y: the nodal values in lattice order, then component, then
+// lane; K: point, packed entry, lane (HessianAction::K).
 // P_ and m_ > 0 fix P and m at compile time (the loops unroll), 0 reads them from t.
 template <int P_, int m_>
-void hex_action(const HessianAction<3>::Tensor& t, const double* K, HexScratch& s) {
+[[gnu::always_inline]] inline void hex_action(const HessianAction<3>::Tensor& t, const float* K, HexScratch& s) {
   const int P = P_ > 0 ? P_ : t.P, m = m_ > 0 ? m_ : t.m;
   const auto B = [&](int q, int i) { return t.B(q, i); };
   const auto D = [&](int q, int i) { return t.D(q, i); };
-  s.A0.assign(static_cast<std::size_t>(3 * m * P * P), 0.0);
-  s.A1.assign(s.A0.size(), 0.0);
+  // n values of 3 components, zeroed.
+  const auto field = [](std::vector<double>& v, int n) {
+    v.assign(static_cast<std::size_t>(3 * k_lanes * n), 0.0);
+    return reinterpret_cast<Lanes*>(v.data());
+  };
+  Lanes* A0 = field(s.A0, m * P * P);
+  Lanes* A1 = field(s.A1, m * P * P);
+  const auto* u = reinterpret_cast<const Lanes*>(s.u.data());
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int qx = 0; qx < m; ++qx) {
-        double* a0 = &s.A0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
-        double* a1 = &s.A1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        Lanes* a0 = A0 + 3 * (qx + m * (iy + P * iz));
+        Lanes* a1 = A1 + 3 * (qx + m * (iy + P * iz));
         for (int ix = 0; ix < P; ++ix) {
-          const double* u = &s.u[static_cast<std::size_t>(3 * (ix + P * (iy + P * iz)))];
+          const Lanes* ui = u + 3 * (ix + P * (iy + P * iz));
           const double b = B(qx, ix), dd = D(qx, ix);
-          for (int k = 0; k < 3; ++k) a0[k] += b * u[k], a1[k] += dd * u[k];
+          for (int k = 0; k < 3; ++k) a0[k] += b * ui[k], a1[k] += dd * ui[k];
         }
       }
-  s.C00.assign(static_cast<std::size_t>(3 * m * m * P), 0.0);
-  s.C01.assign(s.C00.size(), 0.0);
-  s.C10.assign(s.C00.size(), 0.0);
+  Lanes* C00 = field(s.C00, m * m * P);
+  Lanes* C01 = field(s.C01, m * m * P);
+  Lanes* C10 = field(s.C10, m * m * P);
   for (int iz = 0; iz < P; ++iz)
     for (int qy = 0; qy < m; ++qy)
       for (int qx = 0; qx < m; ++qx) {
-        const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+        const int o = 3 * (qx + m * (qy + m * iz));
         for (int iy = 0; iy < P; ++iy) {
-          const double* a0 = &s.A0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
-          const double* a1 = &s.A1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const Lanes* a0 = A0 + 3 * (qx + m * (iy + P * iz));
+          const Lanes* a1 = A1 + 3 * (qx + m * (iy + P * iz));
           const double b = B(qy, iy), dd = D(qy, iy);
-          for (int k = 0; k < 3; ++k) s.C00[o + k] += b * a0[k], s.C01[o + k] += dd * a0[k], s.C10[o + k] += b * a1[k];
+          for (int k = 0; k < 3; ++k) C00[o + k] += b * a0[k], C01[o + k] += dd * a0[k], C10[o + k] += b * a1[k];
         }
       }
-  s.E00.assign(s.C00.size(), 0.0);
-  s.E01.assign(s.C00.size(), 0.0);
-  s.E10.assign(s.C00.size(), 0.0);
+  Lanes* E00 = field(s.E00, m * m * P);
+  Lanes* E01 = field(s.E01, m * m * P);
+  Lanes* E10 = field(s.E10, m * m * P);
   for (int qz = 0; qz < m; ++qz)
     for (int qy = 0; qy < m; ++qy)
       for (int qx = 0; qx < m; ++qx) {
-        Eigen::Matrix<double, 9, 1> g = Eigen::Matrix<double, 9, 1>::Zero();  // vec(G), G(k, j) = ∂_j u_k
+        Lanes g[9] = {};  // vec(G): G(k, j) = ∂_j u_k at g[k + 3j]
         for (int iz = 0; iz < P; ++iz) {
-          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const int o = 3 * (qx + m * (qy + m * iz));
           const double b = B(qz, iz), dd = D(qz, iz);
-          for (int k = 0; k < 3; ++k) g[k] += b * s.C10[o + k], g[3 + k] += b * s.C01[o + k], g[6 + k] += dd * s.C00[o + k];
+          for (int k = 0; k < 3; ++k) g[k] += b * C10[o + k], g[3 + k] += b * C01[o + k], g[6 + k] += dd * C00[o + k];
         }
-        const int q = qx + m * (qy + m * qz);
-        Eigen::Matrix<double, 9, 1> h;
-        packed_product<9>(K + k_packed(9) * q, g.data(), h.data());
+        const auto* Kq = reinterpret_cast<const FloatLanes*>(K + k_packed(9) * k_lanes * (qx + m * (qy + m * qz)));
+        Lanes h[9];
+        for (int i = 0; i < 9; ++i) h[i] = Lanes{} + 0.0;
+        for (int i = 0, e = 0; i < 9; ++i) {
+          h[i] += __builtin_convertvector(Kq[e++], Lanes) * g[i];
+          for (int j = i + 1; j < 9; ++j, ++e) {
+            const Lanes k = __builtin_convertvector(Kq[e], Lanes);
+            h[i] += k * g[j], h[j] += k * g[i];
+          }
+        }
         for (int iz = 0; iz < P; ++iz) {
-          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const int o = 3 * (qx + m * (qy + m * iz));
           const double b = B(qz, iz), dd = D(qz, iz);
-          for (int k = 0; k < 3; ++k) s.E10[o + k] += b * h[k], s.E01[o + k] += b * h[3 + k], s.E00[o + k] += dd * h[6 + k];
+          for (int k = 0; k < 3; ++k) E10[o + k] += b * h[k], E01[o + k] += b * h[3 + k], E00[o + k] += dd * h[6 + k];
         }
       }
-  s.F0.assign(s.A0.size(), 0.0);
-  s.F1.assign(s.A0.size(), 0.0);
+  Lanes* F0 = field(s.F0, m * P * P);
+  Lanes* F1 = field(s.F1, m * P * P);
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int qx = 0; qx < m; ++qx) {
-        double* f0 = &s.F0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
-        double* f1 = &s.F1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+        Lanes* f0 = F0 + 3 * (qx + m * (iy + P * iz));
+        Lanes* f1 = F1 + 3 * (qx + m * (iy + P * iz));
         for (int qy = 0; qy < m; ++qy) {
-          const std::size_t o = static_cast<std::size_t>(3 * (qx + m * (qy + m * iz)));
+          const int o = 3 * (qx + m * (qy + m * iz));
           const double b = B(qy, iy), dd = D(qy, iy);
-          for (int k = 0; k < 3; ++k) f0[k] += b * s.E00[o + k] + dd * s.E01[o + k], f1[k] += b * s.E10[o + k];
+          for (int k = 0; k < 3; ++k) f0[k] += b * E00[o + k] + dd * E01[o + k], f1[k] += b * E10[o + k];
         }
       }
-  s.y.assign(s.u.size(), 0.0);
+  Lanes* y = field(s.y, P * P * P);
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int ix = 0; ix < P; ++ix) {
-        double* y = &s.y[static_cast<std::size_t>(3 * (ix + P * (iy + P * iz)))];
+        Lanes* yi = y + 3 * (ix + P * (iy + P * iz));
         for (int qx = 0; qx < m; ++qx) {
-          const double* f0 = &s.F0[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
-          const double* f1 = &s.F1[static_cast<std::size_t>(3 * (qx + m * (iy + P * iz)))];
+          const Lanes* f0 = F0 + 3 * (qx + m * (iy + P * iz));
+          const Lanes* f1 = F1 + 3 * (qx + m * (iy + P * iz));
           const double b = B(qx, ix), dd = D(qx, ix);
-          for (int k = 0; k < 3; ++k) y[k] += b * f0[k] + dd * f1[k];
+          for (int k = 0; k < 3; ++k) yi[k] += b * f0[k] + dd * f1[k];
         }
       }
 }
 
-// The hex_action for t's sizes: compiled for the Lobatto rules of orders 1–4 (m = p + 2).
-using HexKernel = void (*)(const HessianAction<3>::Tensor&, const double*, HexScratch&);
-HexKernel hex_kernel(const HessianAction<3>::Tensor& t) {
-  if (t.P == 2 && t.m == 3) return hex_action<2, 3>;
-  if (t.P == 3 && t.m == 4) return hex_action<3, 4>;
-  if (t.P == 4 && t.m == 5) return hex_action<4, 5>;
-  if (t.P == 5 && t.m == 6) return hex_action<5, 6>;
-  return hex_action<0, 0>;
+// hex_action for t's sizes, compiled for the Lobatto rules of orders 1–4 (m = p + 2) and in
+// general; on x86-64 also for x86-64-v3 (AVX2, FMA), taken at run time where the processor has it
+// (the lanes then fill its 4-wide registers).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define MESHMORPH_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define MESHMORPH_VECTOR_CLONES
+#endif
+MESHMORPH_VECTOR_CLONES void hex_kernel(const HessianAction<3>::Tensor& t, const float* K, HexScratch& s) {
+  if (t.P == 2 && t.m == 3) return hex_action<2, 3>(t, K, s);
+  if (t.P == 3 && t.m == 4) return hex_action<3, 4>(t, K, s);
+  if (t.P == 4 && t.m == 5) return hex_action<4, 5>(t, K, s);
+  if (t.P == 5 && t.m == 6) return hex_action<5, 6>(t, K, s);
+  hex_action<0, 0>(t, K, s);
 }
 
 }  // namespace
@@ -244,8 +285,8 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     const BlockTargets<d>& bt = targets_->blocks[bi];
     const ShapeTable& table = *bt.table;
     const int n = block.n_nodes_per_cell(), Q = bt.n_points();
-    std::vector<double>& K = out.K[bi];
-    std::vector<double>& E = out.element[bi];
+    std::vector<float>& K = out.K[bi];
+    std::vector<float>& E = out.element[bi];
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
     if (is_simplex(block.type)) {
       // Element matrices (component-major, as detail::element_kernel): on simplices (d·n)² is
@@ -265,14 +306,17 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
           finite = 0;
           continue;
         }
-        double* packed = E.data() + static_cast<std::size_t>(c) * k_packed(dn);
+        float* packed = E.data() + static_cast<std::size_t>(c) * k_packed(dn);
         for (int i = 0; i < dn; ++i)
-          for (int j = i; j < dn; ++j) *packed++ = scratch.H(i, j);  // exactly symmetric (complete_symmetric)
+          for (int j = i; j < dn; ++j) *packed++ = static_cast<float>(scratch.H(i, j));  // exactly symmetric (complete_symmetric)
       }
       continue;
     }
     E.clear();
-    K.resize(block.n_cells() * static_cast<std::size_t>(Q) * k_packed(dd));
+    // Cells in batches of k_lanes, interleaved, where hex_action takes them (HessianAction::K).
+    const bool lanes = out.tensor[bi].P > 0;
+    const std::size_t padded = lanes ? (block.n_cells() + k_lanes - 1) / k_lanes * k_lanes : block.n_cells();
+    K.assign(padded * static_cast<std::size_t>(Q) * k_packed(dd), 0.0f);
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       detail::NodalMatrix<d> X(d, n);
@@ -295,9 +339,9 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
           for (int m = 0; m < d; ++m)
             for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = t[q].W_inv(j, m);
         const Hess Kq = t[q].weight * (M * Hq * M.transpose());
-        double* packed = K.data() + (static_cast<std::size_t>(c) * Q + q) * k_packed(dd);
-        for (int i = 0; i < dd; ++i)
-          for (int j = i; j < dd; ++j) *packed++ = 0.5 * (Kq(i, j) + Kq(j, i));
+        const auto [packed, stride] = point_entries<d>(K.data(), lanes, static_cast<std::size_t>(c), Q, q);
+        for (int i = 0, e = 0; i < dd; ++i)
+          for (int j = i; j < dd; ++j, ++e) packed[e * stride] = static_cast<float>(0.5 * (Kq(i, j) + Kq(j, i)));
       }
     }
   }
@@ -337,32 +381,37 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
       const Eigen::MatrixXd& dN = targets_->blocks[bi].table->dN;  // n × dQ
       const int n = block.n_nodes_per_cell(), Q = targets_->blocks[bi].n_points();
       const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
-      const double* K = action.K[bi].data();
+      const float* K = action.K[bi].data();
       const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * k_packed(dd); };
       // y_e of cell c, node a, component k.
       double* out = local.data() + d * blocks_[bi].first_slot;
       const auto y_of = [&](std::size_t c, int a, int k) -> double& { return out[(c * n + static_cast<std::size_t>(a)) * d + k]; };
       if constexpr (d == 3) {
         if (const auto& t = action.tensor[bi]; t.P > 0) {
-          const HexKernel kernel = hex_kernel(t);
+          const std::ptrdiff_t n_batches = (n_cells + k_lanes - 1) / k_lanes;
 #pragma omp for schedule(static) nowait
-          for (std::ptrdiff_t ci = 0; ci < n_cells; ++ci) {
-            const auto c = static_cast<std::size_t>(ci);
-            const std::int32_t* nodes = block.cell(c);
-            hex.u.resize(static_cast<std::size_t>(3 * n));
-            for (int l = 0; l < n; ++l)
-              for (int k = 0; k < 3; ++k) {
-                const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k];
-                hex.u[static_cast<std::size_t>(3 * l + k)] = r >= 0 ? v[r] : 0.0;
-              }
-            kernel(t, K_of(c), hex);
-            for (int l = 0; l < n; ++l)
-              for (int k = 0; k < 3; ++k) y_of(c, t.node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>(3 * l + k)];
+          for (std::ptrdiff_t batch = 0; batch < n_batches; ++batch) {
+            const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(k_lanes, n_cells - batch * k_lanes));
+            hex.u.assign(static_cast<std::size_t>(3 * k_lanes * n), 0.0);
+            for (int e = 0; e < lanes; ++e) {
+              const std::int32_t* nodes = block.cell(static_cast<std::size_t>(batch * k_lanes + e));
+              for (int l = 0; l < n; ++l)
+                for (int k = 0; k < 3; ++k)
+                  if (const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k]; r >= 0)
+                    hex.u[static_cast<std::size_t>((3 * l + k) * k_lanes + e)] = v[r];
+            }
+            hex_kernel(t, K + static_cast<std::size_t>(batch) * Q * k_packed(dd) * k_lanes, hex);
+            for (int e = 0; e < lanes; ++e) {
+              const auto c = static_cast<std::size_t>(batch * k_lanes + e);
+              for (int l = 0; l < n; ++l)
+                for (int k = 0; k < 3; ++k)
+                  y_of(c, t.node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>((3 * l + k) * k_lanes + e)];
+            }
           }
           continue;
         }
       }
-      if (const std::vector<double>& E = action.element[bi]; !E.empty()) {
+      if (const std::vector<float>& E = action.element[bi]; !E.empty()) {
         const int dn = d * n;
         ue.resize(dn);
         ye.resize(dn);
@@ -401,7 +450,7 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
         }
         R.noalias() = V * dN;
         for (int e = 0; e < b; ++e) {
-          const double* Kc = K_of(first + static_cast<std::size_t>(e));
+          const float* Kc = K_of(first + static_cast<std::size_t>(e));
           for (int q = 0; q < Q; ++q) {
             Eigen::Matrix<double, dd, 1> g;
             for (int j = 0; j < d; ++j)
@@ -434,8 +483,8 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
   local.resize(static_cast<std::size_t>(pairs) * node_slots_.size());
   // S_jm^kl = K(k + dj, l + dm) + K(k + dm, l + dj) for j < m, K(k + dj, l + dj) for j = m:
   // the block (k, l) of node a is Σ_q Σ_{j ≤ m} ∂_j N_a ∂_m N_a S_jm^kl.
-  const auto fields = [](const double* Kq, int j, int m, double* S) {
-    const auto at = [&](int r, int c) { return r <= c ? Kq[packed_index(dd, r, c)] : Kq[packed_index(dd, c, r)]; };
+  const auto fields = [](std::pair<const float*, int> Kq, int j, int m, double* S) {
+    const auto at = [&](int r, int c) { return double(Kq.first[Kq.second * (r <= c ? packed_index(dd, r, c) : packed_index(dd, c, r))]); };
     for (int k = 0, o = 0; k < d; ++k)
       for (int l = k; l < d; ++l, ++o) S[o] = at(k + d * j, l + d * m) + (j < m ? at(k + d * m, l + d * j) : 0.0);
   };
@@ -445,8 +494,8 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
     const ShapeTable& table = *targets_->blocks[bi].table;
     const int n = block.n_nodes_per_cell(), Q = table.n_points();
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
-    const double* K = action.K[bi].data();
-    const std::vector<double>& E = action.element[bi];
+    const float* K = action.K[bi].data();
+    const std::vector<float>& E = action.element[bi];
     double* out = local.data() + pairs * blocks_[bi].first_slot;
     const auto& t = action.tensor[bi];
     // Sum factorization on hexahedra: ∂_j N_a ∂_m N_a at point q is a product of 1D tables,
@@ -462,13 +511,13 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
       double* y = out + c * static_cast<std::size_t>(n * pairs);  // node a, pair o at pairs·a + o
       if (!E.empty()) {
         const int dn = d * n;
-        const double* Ec = E.data() + c * static_cast<std::size_t>(k_packed(dn));
+        const float* Ec = E.data() + c * static_cast<std::size_t>(k_packed(dn));
         for (int a = 0; a < n; ++a)
           for (int k = 0, o = 0; k < d; ++k)
             for (int l = k; l < d; ++l, ++o) y[pairs * a + o] = Ec[packed_index(dn, k * n + a, l * n + a)];
         continue;
       }
-      const double* Kc = K + c * static_cast<std::size_t>(Q) * k_packed(dd);
+      const auto Kq = [&](int q) { return point_entries<d>(K, t.P > 0, c, Q, q); };
       h.setZero(pairs, n);
       if (t.P > 0) {
         if constexpr (d == 3) {
@@ -478,7 +527,7 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
           C.resize(static_cast<std::size_t>(pairs * m * P * P));
           for (int j = 0; j < d; ++j)
             for (int mm = j; mm < d; ++mm) {
-              for (int q = 0; q < Q; ++q) fields(Kc + q * k_packed(dd), j, mm, &S[static_cast<std::size_t>(pairs * q)]);
+              for (int q = 0; q < Q; ++q) fields(Kq(q), j, mm, &S[static_cast<std::size_t>(pairs * q)]);
               const Eigen::MatrixXd& X = table1d[static_cast<std::size_t>((j == 0) + (mm == 0))];
               const Eigen::MatrixXd& Y = table1d[static_cast<std::size_t>((j == 1) + (mm == 1))];
               const Eigen::MatrixXd& Z = table1d[static_cast<std::size_t>((j == 2) + (mm == 2))];
@@ -517,7 +566,7 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
           const double* dNq = table.dN.data() + static_cast<std::ptrdiff_t>(q) * d * n;  // column q·d + j at j·n
           for (int j = 0; j < d; ++j)
             for (int mm = j; mm < d; ++mm) {
-              fields(Kc + q * k_packed(dd), j, mm, Sq);
+              fields(Kq(q), j, mm, Sq);
               for (int a = 0; a < n; ++a) {
                 const double w = dNq[j * n + a] * dNq[mm * n + a];
                 for (int o = 0; o < pairs; ++o) h(o, a) += w * Sq[o];

@@ -41,9 +41,10 @@ void action_matches_assembly(ElementType type, int order, bool fix_boundary,
     Eigen::VectorXd y;
     assembler.apply_hessian(action, v, y);
     const Eigen::VectorXd expected = a.hessian * v;
-    EXPECT_LE((y - expected).norm(), 1e-12 * expected.norm());
+    // K_q and the element matrices are stored in single precision (2⁻²⁴ ≈ 6e-8 per entry).
+    EXPECT_LE((y - expected).norm(), 1e-6 * expected.norm());
     const Eigen::VectorXd diagonal = assembler.hessian_diagonal(action);
-    EXPECT_LE((diagonal - Eigen::VectorXd(a.hessian.diagonal())).norm(), 1e-12 * diagonal.norm());
+    EXPECT_LE((diagonal - Eigen::VectorXd(a.hessian.diagonal())).norm(), 1e-6 * diagonal.norm());
     // The node blocks: the assembled Hessian's d × d blocks of free DOFs.
     const std::vector<double> blocks = assembler.hessian_blocks(action);
     double block_error = 0.0;
@@ -53,7 +54,7 @@ void action_matches_assembly(ElementType type, int order, bool fix_boundary,
           const std::int32_t r = dofs.reduced(d * i + k), c = dofs.reduced(d * i + l);
           if (r >= 0 && c >= 0) block_error = std::max(block_error, std::abs(blocks[i * d * d + k + d * l] - a.hessian.coeff(r, c)));
         }
-    EXPECT_LE(block_error, 1e-12 * diagonal.cwiseAbs().maxCoeff());
+    EXPECT_LE(block_error, 1e-6 * diagonal.cwiseAbs().maxCoeff());
     // Gathered node by node in cell order: the thread count does not change a bit.
     Eigen::VectorXd y1, y2;
     assembler.apply_hessian(action, v, y1, 1);

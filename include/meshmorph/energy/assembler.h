@@ -42,10 +42,17 @@ struct Assembly {
 /// stored packed: the rows of its upper triangle, d²(d² + 1)/2 doubles a point.
 template <int d>
 struct HessianAction {
-  std::vector<std::vector<double>> K;  ///< per cell block: n_cells × n_points × d²(d² + 1)/2
+  /// Cells per batch of the sum-factorized product (one SIMD lane each).
+  static constexpr int k_lanes = 4;
+  /// Per cell block: n_cells × n_points × d²(d² + 1)/2; where the block is sum-factorized
+  /// (tensor P > 0) its cells in batches of k_lanes, interleaved (batch × point × entry ×
+  /// lane), the last batch padded with zeros. In single precision, as `element`: reading them
+  /// bounds the product, and the action is then H's to ~1e-7 relative, which the inexact
+  /// Newton steps of newton_matrix_free absorb (value and gradient stay in double).
+  std::vector<std::vector<float>> K;
   /// Per cell block of simplices instead of K: the element Hessians (component-major local
   /// order k·n + a), packed as K_q, n_cells × d·n(d·n + 1)/2: fewer numbers and flops than K.
-  std::vector<std::vector<double>> element;
+  std::vector<std::vector<float>> element;
   /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
   /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
   /// or rule that does not factor).
