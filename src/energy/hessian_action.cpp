@@ -333,12 +333,19 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
         }
         Hess Hq = ev.d2mu_dT2;
         if (mode == HessianMode::Projected) detail::project_isotropic<d>(T, Hq);
-        // M = W⁻¹ ⊗ I: M(k + dj, k + dm) = W⁻¹(j, m), so that vec(T) = Mᵀ vec(G).
-        Hess M = Hess::Zero();
-        for (int j = 0; j < d; ++j)
-          for (int m = 0; m < d; ++m)
-            for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = t[q].W_inv(j, m);
-        const Hess Kq = t[q].weight * (M * Hq * M.transpose());
+        // M = W⁻¹ ⊗ I: M(k + dj, k + dm) = W⁻¹(j, m), so that vec(T) = Mᵀ vec(G). Ideal
+        // targets of tensor cells have W⁻¹ = s I, where M Hq Mᵀ = s² Hq.
+        const MatT<d>& W_inv = t[q].W_inv;
+        Hess Kq;
+        if (W_inv.isDiagonal(0.0) && (W_inv.diagonal().array() == W_inv(0, 0)).all()) {
+          Kq = (t[q].weight * W_inv(0, 0) * W_inv(0, 0)) * Hq;
+        } else {
+          Hess M = Hess::Zero();
+          for (int j = 0; j < d; ++j)
+            for (int m = 0; m < d; ++m)
+              for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = W_inv(j, m);
+          Kq = t[q].weight * (M * Hq * M.transpose());
+        }
         const auto [packed, stride] = point_entries<d>(K.data(), lanes, static_cast<std::size_t>(c), Q, q);
         for (int i = 0, e = 0; i < dd; ++i)
           for (int j = i; j < dd; ++j, ++e) packed[e * stride] = static_cast<float>(0.5 * (Kq(i, j) + Kq(j, i)));

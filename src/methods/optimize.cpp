@@ -47,11 +47,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
       fixed.size() - static_cast<std::size_t>(std::count_if(fixed.begin(), fixed.end(), [](std::uint8_t f) { return f != 0; }));
   fo.threads = optimize_threads(options.threads, n_free);
   OptimizeSolver kind = options.solver;
-  if (kind == OptimizeSolver::Auto) {
-    const bool hexahedra = std::all_of(mesh.cells.begin(), mesh.cells.end(), [](const CellBlock& b) { return b.type == ElementType::Hexahedron; });
-    const bool large = n_free >= (hexahedra ? k_optimize_matrix_free_dofs : k_optimize_matrix_free_dofs_any);
-    kind = large ? OptimizeSolver::MatrixFree : OptimizeSolver::Cholesky;
-  }
+  if (kind == OptimizeSolver::Auto) kind = d == 3 ? OptimizeSolver::MatrixFree : OptimizeSolver::Cholesky;
   const std::vector<FitTerm> no_terms;
   OptimizeResult result;
   FitProblem<d> P(mesh, topology, no_terms, fixed, fo, x, slides, kind == OptimizeSolver::MatrixFree);

@@ -15,24 +15,16 @@ namespace meshmorph {
 
 /// How optimize solves for its Newton steps.
 enum class OptimizeSolver {
-  /// Without slides, MatrixFree from k_optimize_matrix_free_dofs free DOFs up on meshes of
-  /// hexahedra (sum factorization) and from k_optimize_matrix_free_dofs_any up on any mesh;
-  /// else Cholesky (bench/README.md)
+  /// MatrixFree in 3D, Cholesky in 2D: on every 3D mesh of MFEM's comparison the matrix-free
+  /// steps took less time and memory, from 5.9k DOFs up (bench/README.md); on the 2D ones
+  /// (≤ 4.2k DOFs) CHOLMOD took a third of the time.
   Auto,
   Cholesky,    ///< the assembled Hessian factored by CHOLMOD
   Iterative,   ///< the assembled Hessian, CG with smoothed-aggregation AMG
-  /// No matrix: the Hessian's action per quadrature point, Jacobi-preconditioned CG to an
-  /// Eisenstat–Walker tolerance (newton_matrix_free; MFEM's partial assembly). Not with
-  /// sliding nodes: those runs take Cholesky.
+  /// No matrix: the Hessian's action per quadrature point, CG preconditioned by its node
+  /// blocks to an Eisenstat–Walker tolerance (newton_matrix_free; MFEM's partial assembly).
   MatrixFree,
 };
-
-/// Free DOFs from which OptimizeSolver::Auto takes MatrixFree on hexahedral meshes: at 95k,
-/// 17.7 s against CHOLMOD's 31.6 s (fichq3_rs3_o2, bench/README.md).
-inline constexpr std::size_t k_optimize_matrix_free_dofs = 50000;
-/// The same on other meshes, where CHOLMOD is faster at 95k (escher_rs3_o2: 22.8 s against
-/// 26.8 s) but its factor reaches 4.3 GB at 311k, against 0.5 GB matrix-free.
-inline constexpr std::size_t k_optimize_matrix_free_dofs_any = 200000;
 
 /// Parameters of TMOP mesh optimization (paper 003 §2.2); defaults are those of MFEM's
 /// mesh-optimizer runs of docs/optimize.md.
