@@ -366,10 +366,10 @@ void FitProblem<d>::evaluate(HessianMode mode, Assembly& out) {
 template <int d>
 void FitProblem<d>::evaluate_action(HessianMode mode, Assembly& out) {
   MESHMORPH_CHECK(terms_->empty(), "FitProblem: the matrix-free Hessian has no fitted nodes");
-  AssemblyOptions o;
-  o.want = Want::Gradient;
-  o.threads = options_.threads;
-  assembler_->assemble(*metric_, x_, o, out);
+  if (metric_at_current_.gradient.size() != static_cast<Eigen::Index>(dofs_.n_free())) remember_current();
+  out.value = metric_at_current_.value;  // F and ∇F as remember_current() or accept() measured them
+  out.gradient = metric_at_current_.gradient;
+  out.element_values = metric_at_current_.element_values;
   if (std::isfinite(out.value) && !assembler_->prepare_hessian(*metric_, x_, mode, options_.threads, action_))
     out.value = std::numeric_limits<double>::infinity();
   if (!std::isfinite(out.value)) return;
@@ -428,12 +428,12 @@ HessianBlocks FitProblem<d>::hessian_blocks() {
 }
 
 template <int d>
-double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
+double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x, Assembly& metric) {
   AssemblyOptions o;
   o.want = Want::Gradient;
   o.threads = options_.threads;
-  Assembly a;
-  assembler_->assemble(*metric_, x, o, a);
+  assembler_->assemble(*metric_, x, o, metric);
+  Assembly a = metric;
   add_penalty(x, Want::Gradient, HessianMode::Projected, a);
   // A node sliding on one surface counts the descent that surface allows: at a crease of a
   // discrete surface, that of the facets' tangent cones (0 at a minimum on the crease, where
@@ -451,7 +451,7 @@ double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
 
 template <int d>
 void FitProblem<d>::remember_current() {
-  gradient_norm_ = gradient_norm(x_);
+  gradient_norm_ = gradient_norm(x_, metric_at_current_);
   error_ = fit_error(x_);
 }
 
@@ -473,7 +473,7 @@ bool FitProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
   m.min_det = min_det(trial_);
   if (!(m.min_det > std::max(0.0, options_.det_floor * min_det0_))) return false;  // det A > 0, eq. 15
   if (error_ > 0.0 && !(fit_error(trial_) < options_.growth * error_)) return false;  // eq. 14
-  m.gradient_norm = gradient_norm(trial_);
+  m.gradient_norm = gradient_norm(trial_, metric_at_trial_);
   if (!(m.gradient_norm < options_.growth * gradient_norm_)) return false;  // §2.2
   if (m.alpha != alpha) m = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), m.min_det, m.gradient_norm};
   m.admitted = true;
@@ -487,9 +487,10 @@ void FitProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
   if (!(admitted_.admitted && admitted_.alpha == alpha)) {
     step_to(p, alpha, trial_);
     admitted_ = {alpha, assembler_->value(*metric_, trial_, {}, options_.threads) + penalty_value(trial_), min_det(trial_),
-                 gradient_norm(trial_), true};
+                 gradient_norm(trial_, metric_at_trial_), true};
   }
   x_.swap(trial_);
+  std::swap(metric_at_current_, metric_at_trial_);
   gradient_norm_ = admitted_.gradient_norm;
   error_ = fit_error(x_);
   current_ = admitted_;

@@ -84,7 +84,8 @@ class FitProblem final : public MatrixFreeNewtonProblem {
 
  private:
   void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
-  double gradient_norm(const Eigen::MatrixXd& x);  // |∇F| over the free DOFs
+  // |∇F| over the free DOFs; `metric` gets the metric term's value and gradient at x.
+  double gradient_norm(const Eigen::MatrixXd& x, Assembly& metric);
   double penalty_value(const Eigen::MatrixXd& x) const;
   void bind_blocks(const Eigen::SparseMatrix<double>& H);
   std::vector<std::int64_t> node_blocks(const Eigen::SparseMatrix<double>& H, const std::vector<std::int32_t>& nodes) const;
@@ -138,6 +139,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
     bool admitted = false;
   };
   Measured admitted_, current_;
+  // The metric term's value and gradient at x_ (from remember_current() or accept(): what
+  // evaluate_action() returns) and at trial_ (from admissible()).
+  Assembly metric_at_current_, metric_at_trial_;
   double min_det0_ = 0.0;
   double gradient_norm_ = 0.0, error_ = 0.0;  // at the current iterate, for the line search
   Eigen::MatrixXd x_, trial_;
