@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "meshmorph/error.h"
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
 #include "solve/detail/line_search.h"
@@ -32,10 +33,12 @@ class BlockJacobi {
       for (int i = 0; i < size(b); ++i) sum += std::abs(b_.values[static_cast<std::size_t>(b * s * s + i * (s + 1))]);
     const std::int32_t n = b_.first.empty() ? 0 : b_.first.back();
     const double floor = 1e-3 * (n > 0 && sum > 0.0 ? sum / n : 1.0);
+    using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, 3>;  // no allocation
+    MESHMORPH_CHECK(s <= 3, "newton_matrix_free: node blocks of at most 3 DOFs");
     for (std::ptrdiff_t b = 0; b < n_blocks; ++b) {
       const int m = size(b);
       Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>> B(b_.values.data() + b * s * s, m, m, Eigen::OuterStride<>(s));
-      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(B);
+      const Eigen::SelfAdjointEigenSolver<Block> eig(Block{B});
       B = eig.eigenvectors() * eig.eigenvalues().cwiseAbs().cwiseMax(floor).cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
     }
   }
