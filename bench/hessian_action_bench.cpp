@@ -2,7 +2,7 @@
 // The operations of one matrix-free Newton step of `meshmorph optimize` (μ303 in 3D, μ2 in 2D,
 // ideal target, boundary fixed, Lobatto points as optimize takes them) on a mesh file: the
 // gradient, the value, the per-point Hessian (prepare_hessian), its action and its diagonal.
-//   bench_hessian_action MESH THREADS [REPEATS]
+//   bench_hessian_action MESH THREADS [REPEATS] [projected|exact]
 // Prints one Markdown row (bench/README.md): best wall and CPU seconds of each operation over
 // REPEATS runs. CPU seconds count every thread, so they hold on a loaded machine where the
 // wall times do not.
@@ -51,7 +51,7 @@ Timing best_of(int repeats, const std::function<void()>& f) {
 }
 
 template <int d>
-int run(const Mesh& mesh, const std::string& name, int threads, int repeats) {
+int run(const Mesh& mesh, const std::string& name, int threads, int repeats, HessianMode mode) {
   const Topology topology = build_topology(mesh);
   int order = 1;
   for (const CellBlock& b : mesh.cells) order = std::max(order, b.order);
@@ -70,7 +70,7 @@ int run(const Mesh& mesh, const std::string& name, int threads, int repeats) {
   assembler.assemble(*metric, mesh.x, gradient, out);
   const Timing tg = best_of(repeats, [&] { assembler.assemble(*metric, mesh.x, gradient, out); });
   const Timing tv = best_of(repeats, [&] { assembler.value(*metric, mesh.x, {}, threads); });
-  const Timing tp = best_of(repeats, [&] { assembler.prepare_hessian(*metric, mesh.x, HessianMode::Projected, threads, action); });
+  const Timing tp = best_of(repeats, [&] { assembler.prepare_hessian(*metric, mesh.x, mode, threads, action); });
   const Timing ta = best_of(repeats, [&] { assembler.apply_hessian(action, v, y, threads); });
   const Timing td = best_of(repeats, [&] { assembler.hessian_diagonal(action, threads); });
   // | mesh | cells | DOFs | threads | gradient | value | prepare | action | diagonal | peak MB |
@@ -91,11 +91,13 @@ int main(int argc, char** argv) {
   const std::string path = argv[1];
   const int threads = std::atoi(argv[2]);
   const int repeats = argc > 3 ? std::atoi(argv[3]) : 5;
-  if (threads < 1 || repeats < 1) {
-    std::fprintf(stderr, "bench_hessian_action: bad thread or repeat count\n");
+  const std::string mode = argc > 4 ? argv[4] : "projected";
+  if (threads < 1 || repeats < 1 || (mode != "projected" && mode != "exact")) {
+    std::fprintf(stderr, "bench_hessian_action: bad thread or repeat count, or mode\n");
     return 2;
   }
+  const HessianMode m = mode == "exact" ? HessianMode::Exact : HessianMode::Projected;
   const Mesh mesh = read_mesh(path);
   const std::string name = path.substr(path.find_last_of('/') + 1);
-  return mesh.dim == 3 ? run<3>(mesh, name, threads, repeats) : run<2>(mesh, name, threads, repeats);
+  return mesh.dim == 3 ? run<3>(mesh, name, threads, repeats, m) : run<2>(mesh, name, threads, repeats, m);
 }
