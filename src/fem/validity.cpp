@@ -61,7 +61,7 @@ double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X, const std::v
   double m = std::numeric_limits<double>::infinity();
   for (int q = 0; q < t.n_points(); ++q) {
     if (skip && (*skip)[static_cast<std::size_t>(q)]) continue;
-    const Eigen::Matrix<double, d, d> A = X * t.grad(q);
+    const Eigen::Matrix<double, d, d> A = X.lazyProduct(t.grad(q));  // coefficient-wise: a GEMM per sample costs its packing
     const double det = A.determinant();
     if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
     m = std::min(m, det);

@@ -116,7 +116,7 @@ std::array<double, 3> FitProblem<d>::metric_range() const {
       for (int a = 0; a < n; ++a) X.col(a) = x_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
       const QuadratureTarget<d>* t = targets.cell(static_cast<std::size_t>(c));
       for (int q = 0; q < nq; ++q) {
-        const MatT<d> T = X * table.grad(q) * t[q].W_inv;
+        const MatT<d> T = X.lazyProduct(table.grad(q)) * t[q].W_inv;
         const double mu = metric_->eval(T, Want::Value).mu;
         lo = std::min(lo, mu);
         hi = std::max(hi, mu);

@@ -13,15 +13,16 @@ namespace meshmorph {
 Eigen::MatrixXd cell_coordinates(const Mesh& mesh, const CellBlock& block, std::size_t cell);
 
 /// Element Jacobian A = ∂x/∂ξ = X · ∇N at point q of a table (dim × dim); X is the
-/// dim × n nodal matrix of the element.
+/// dim × n nodal matrix of the element. Coefficient-wise products: Eigen's GEMM would pack
+/// its operands for each of these d × d results.
 template <int d>
 Eigen::Matrix<double, d, d> jacobian(const Eigen::Matrix<double, d, Eigen::Dynamic>& X,
                                      const ShapeTable& table, int q) {
-  return X * table.grad(q);
+  return X.lazyProduct(table.grad(q));
 }
 
 inline Eigen::MatrixXd jacobian(const Eigen::MatrixXd& X, const ShapeTable& table, int q) {
-  return X * table.grad(q);
+  return X.lazyProduct(table.grad(q));
 }
 
 }  // namespace meshmorph

@@ -65,7 +65,7 @@ double element_kernel(const Metric<d>& metric, const ShapeTable& table, const Qu
   Eigen::Matrix<double, Eigen::Dynamic, d, Eigen::ColMajor, k_max_nodes, d> Bq(n, d);
   for (int q = 0; q < Q; ++q) {
     const QuadratureTarget<d>& t = targets[q];
-    Bq.noalias() = table.dN.middleCols(q * d, d) * t.W_inv;
+    Bq.noalias() = table.dN.middleCols(q * d, d).lazyProduct(t.W_inv);  // coefficient-wise: no GEMM packing for n × d · d × d
     const MatT<d> T = X.lazyProduct(Bq);
     const MetricEval<d> ev = metric.eval(T, want);
     if (!(ev.mu < std::numeric_limits<double>::infinity())) return std::numeric_limits<double>::infinity();
@@ -83,7 +83,7 @@ double element_kernel(const Metric<d>& metric, const ShapeTable& table, const Qu
         MatT<d> Hkl;
         for (int j = 0; j < d; ++j)
           for (int m = 0; m < d; ++m) Hkl(j, m) = Hq(k + d * j, l + d * m);
-        s.C.middleCols((pair * Q + q) * d, d).noalias() = Bq * Hkl;
+        s.C.middleCols((pair * Q + q) * d, d).noalias() = Bq.lazyProduct(Hkl);
       }
   }
   if (grad) s.g.noalias() = s.P * s.B.transpose();
