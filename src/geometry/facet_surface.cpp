@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
@@ -302,58 +304,88 @@ class FacetSurface final : public LevelSetNode {
     return descent;
   }
 
-  double box_distance2(const Eigen::Vector3d& x, int box) const {
-    const Box& b = boxes_[static_cast<std::size_t>(box)];
+  // Distinct for every surface built: the key of the per-thread search cache.
+  static std::uint64_t next_serial() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+  }
+
+  template <class B>
+  static double box_distance2(const Eigen::Vector3d& x, const B& b) {
     return (x - x.cwiseMax(b.lo).cwiseMin(b.hi)).squaredNorm();
   }
 
-  Foot foot(const Vec& x) const { return foot(x, tol_); }
-  // `tol`: the distance within which x counts as on S.
-  Foot foot(const Vec& x, double tol) const {
+  // Every facet within the crease tolerance 1e4·tol_ of x (the nearest first) and the nearest
+  // facet: enough for foot() at either tolerance.
+  struct Search {
+    std::uint64_t surface = 0;  // serial_ of the surface searched, 0 for none
+    Vec x;
+    Hit best;
+    std::vector<Hit> near;
+  };
+
+  // fit_problem asks value, gradient, Hessian, stationarity and step normals at one point in
+  // turn: each thread keeps its last search, keyed by the surface's serial (an address may be
+  // reused) and x bit for bit, so they cost one search.
+  const Search& search(const Vec& x) const {
+    thread_local Search last;
+    if (last.surface == serial_ && last.x.size() == x.size() && last.x == x) return last;
+    last.surface = 0;  // invalid until filled
+    last.x = x;
+    last.best = Hit{};
+    last.near.clear();
+    const double near2 = 1e8 * tol_ * tol_;
     Eigen::Vector3d x3 = Eigen::Vector3d::Zero();
     x3.head(x.size()) = x;
-    std::vector<std::pair<int, Hit>> near;  // facets within tol of x, or the nearest one
-    Hit best;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int top = stack.back();
       stack.pop_back();
-      if (box_distance2(x3, top) > std::max(best.dist2, tol * tol)) continue;
+      const double bound = std::max(last.best.dist2, near2);
+      if (box_distance2(x3, boxes_[static_cast<std::size_t>(top)]) > bound) continue;
       const Box& b = boxes_[static_cast<std::size_t>(top)];
       if (b.left >= 0) {  // the nearer child on top: it tightens the bound sooner
-        const bool left_first = box_distance2(x3, b.left) <= box_distance2(x3, b.right);
+        const bool left_first = box_distance2(x3, boxes_[static_cast<std::size_t>(b.left)]) <=
+                                box_distance2(x3, boxes_[static_cast<std::size_t>(b.right)]);
         stack.push_back(left_first ? b.right : b.left);
         stack.push_back(left_first ? b.left : b.right);
         continue;
       }
       for (int i = b.first; i < b.first + b.count; ++i) {
         const Facet& f = facets_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
+        if (box_distance2(x3, f) > std::max(last.best.dist2, near2)) continue;  // as the boxes above
         Hit h = closest_on_facet(f, params_.at({f.basis->type(), f.basis->order()}), x);
-        if (h.dist2 <= tol * tol) near.emplace_back(order_[static_cast<std::size_t>(i)], h);
-        if (h.dist2 < best.dist2) best = std::move(h);
+        if (h.dist2 <= near2) last.near.push_back(h);
+        if (h.dist2 < last.best.dist2) last.best = std::move(h);
       }
     }
+    std::stable_sort(last.near.begin(), last.near.end(), [](const Hit& a, const Hit& b) { return a.dist2 < b.dist2; });
+    last.surface = serial_;
+    return last;
+  }
+
+  Foot foot(const Vec& x) const { return foot(x, tol_); }
+  // `tol`: the distance within which x counts as on S (at most the search's 1e4·tol_).
+  Foot foot(const Vec& x, double tol) const {
+    const Search& s = search(x);
     Foot f;
-    const Vec nf = outward_normal(best.at.T);
-    const Vec r = x - best.at.p;
-    if (near.empty()) {
-      f.through.push_back(best.at);
-      if (best.rim) {
+    for (const Hit& h : s.near)
+      if (h.dist2 <= tol * tol) f.through.push_back(h.at);
+    if (f.through.empty()) {
+      const Vec nf = outward_normal(s.best.at.T), r = x - s.best.at.p;
+      f.through.push_back(s.best.at);
+      if (s.best.rim) {
         f.n = nf;
         f.sigma = r.dot(nf);
       } else {
-        f.sigma = std::copysign(std::sqrt(best.dist2), r.dot(nf));
+        f.sigma = std::copysign(std::sqrt(s.best.dist2), r.dot(nf));
         f.n = r / f.sigma;
       }
       return f;
     }
     // On S: the mean normal of the facets through the foot point (the nearest one first).
-    std::stable_sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.second.dist2 < b.second.dist2; });
     f.n = Vec::Zero(x.size());
-    for (const auto& [i, h] : near) {
-      f.n += outward_normal(h.at.T);
-      f.through.push_back(h.at);
-    }
+    for (const FacetPoint& q : f.through) f.n += outward_normal(q.T);
     f.n.normalize();
     f.sigma = (x - f.through.front().p).dot(f.n);
     f.on_surface = true;
@@ -363,6 +395,7 @@ class FacetSurface final : public LevelSetNode {
   std::vector<Facet> facets_;
   std::map<std::pair<ElementType, int>, Eigen::MatrixXd> params_;  // sample parameters, m × s
   double tol_;
+  std::uint64_t serial_ = next_serial();
   std::vector<Box> boxes_;
   std::vector<int> order_;
 };

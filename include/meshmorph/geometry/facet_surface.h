@@ -37,6 +37,8 @@ Eigen::VectorXd outward_normal(const Eigen::MatrixXd& T);
 /// reference facet): stationarity(x, g) is the largest descent over the tangent cones of the
 /// facets through x, and step_normals(x, g) all their normals when no cone descends more than
 /// the crease itself (the step follows the crease), else the normal of the steepest facet.
+/// Cost: one closest-point search per point; each thread keeps its last one, so the value,
+/// gradient, Hessian, closest point, stationarity and step normals at one x share it.
 LevelSetFunction facet_surface(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets);
 
 }  // namespace meshmorph
