@@ -28,6 +28,7 @@ struct FacetShape {
   Eigen::MatrixXd to_monomial, to_bezier;     // n × n: coefficients = nodes · to_…
   Eigen::MatrixXd samples;                    // m × s: 2p + 1 per direction
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 4> corners;  // m × n_corners
+  std::array<std::vector<int>, 4> edge_controls;  // the control points of reference edge (corner k, k + 1)
 };
 
 namespace {
@@ -47,8 +48,9 @@ double binomial(int n, int k) {
   return c;
 }
 
-// The Bernstein polynomials of degree p at u, in any fixed order: on [−1, 1] (lines, and
-// quadrilaterals by products) and on the unit triangle (barycentric 1 − u − v, u, v).
+// The Bernstein polynomials of degree p at u: on [−1, 1] (lines, and quadrilaterals by
+// products) and on the unit triangle (barycentric 1 − u − v, u, v). Their order: that of
+// bernstein_points.
 Eigen::VectorXd bernstein(ElementType type, int p, const Eigen::VectorXd& u) {
   auto line = [p](double s, int i) {
     const double t = 0.5 * (s + 1.0);
@@ -67,6 +69,19 @@ Eigen::VectorXd bernstein(ElementType type, int p, const Eigen::VectorXd& u) {
         b.push_back(binomial(p, i) * binomial(p - i, j) * std::pow(u[0], i) * std::pow(u[1], j) * std::pow(l0, p - i - j));
   }
   return Eigen::Map<Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
+}
+
+// The domain point of each Bernstein polynomial (where it peaks), m × n.
+Eigen::MatrixXd bernstein_points(ElementType type, int p) {
+  std::vector<Eigen::Vector2d> u;
+  for (int j = 0; j <= (type == ElementType::Line ? 0 : p); ++j)
+    for (int i = 0; i <= (type == ElementType::Triangle ? p - j : p); ++i)
+      u.push_back(type == ElementType::Triangle ? Eigen::Vector2d(double(i) / p, double(j) / p)
+                                                : Eigen::Vector2d(2.0 * i / p - 1.0, 2.0 * j / p - 1.0));
+  const int m = type == ElementType::Line ? 1 : 2;
+  Eigen::MatrixXd out(m, static_cast<Eigen::Index>(u.size()));
+  for (std::size_t k = 0; k < u.size(); ++k) out.col(static_cast<Eigen::Index>(k)) = u[k].head(m);
+  return out;
 }
 
 // A lattice of 2p + 1 points per direction on the reference facet.
@@ -110,6 +125,15 @@ std::unique_ptr<FacetShape> make_shape(const LagrangeBasis& basis) {
   s->to_bezier = Bz.fullPivLu().inverse();
   s->samples = sample_parameters(s->type, s->order);
   s->corners = nodes.leftCols(s->n_corners);
+  // A patch's boundary curve is the Bézier curve of its control points there.
+  const Eigen::MatrixXd points = bernstein_points(s->type, s->order);
+  for (int k = 0; k < s->n_corners && s->m == 2; ++k) {
+    const Eigen::Vector2d a = s->corners.col(k), e = Eigen::Vector2d(s->corners.col((k + 1) % s->n_corners)) - a;
+    for (Eigen::Index c = 0; c < points.cols(); ++c) {
+      const Eigen::Vector2d v = Eigen::Vector2d(points.col(c)) - a;
+      if (std::abs(v[0] * e[1] - v[1] * e[0]) <= 1e-12) s->edge_controls[static_cast<std::size_t>(k)].push_back(static_cast<int>(c));
+    }
+  }
   return s;
 }
 
@@ -163,6 +187,12 @@ PolynomialFacet::PolynomialFacet(const LagrangeBasis& basis, const Eigen::Matrix
   const double pad = 1e-9 * ((P.rowwise().maxCoeff() - P.rowwise().minCoeff()).norm() + x0.norm());
   lo_ = x0 + P.rowwise().minCoeff() - Eigen::Vector3d::Constant(pad);
   hi_ = x0 + P.rowwise().maxCoeff() + Eigen::Vector3d::Constant(pad);
+  for (std::size_t k = 0; k < s.edge_controls.size(); ++k) {
+    const Eigen::Matrix3Xd E = P(Eigen::all, s.edge_controls[k]);
+    if (E.cols() == 0) continue;
+    edge_lo_[k] = x0 + E.rowwise().minCoeff() - Eigen::Vector3d::Constant(pad);
+    edge_hi_[k] = x0 + E.rowwise().maxCoeff() + Eigen::Vector3d::Constant(pad);
+  }
   auto add_plane = [&](Eigen::Vector3d a) {
     if (!(a.norm() > 0.0) || !a.allFinite()) return;  // a degenerate facet: the box alone
     a.normalize();
@@ -306,9 +336,13 @@ FacetHit PolynomialFacet::closest(const Eigen::VectorXd& x) const {
     hit.rim = c >= 0 && rim_corner_[static_cast<std::size_t>(c)];
     return hit;
   }
-  // The interior iteration stopped on ∂K: the minimum over each edge (and so its corners).
+  // The interior iteration stopped on ∂K: the minimum over each edge (and so its corners),
+  // but an edge whose control points' box is farther than the nearest edge so far.
   hit.dist2 = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d x3 = lift(x);
   for (int k = 0; k < s.n_corners; ++k) {
+    const Eigen::Vector3d& lo = edge_lo_[static_cast<std::size_t>(k)];
+    if ((x3 - x3.cwiseMax(lo).cwiseMin(edge_hi_[static_cast<std::size_t>(k)])).squaredNorm() > hit.dist2) continue;
     const FacetPoint e = closest_on_segment(x, s.corners.col(k), s.corners.col((k + 1) % s.n_corners));
     if (const double d2 = (e.p - x).squaredNorm(); d2 < hit.dist2) {
       const int c = corner_at(e.u);

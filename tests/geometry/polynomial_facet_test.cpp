@@ -103,6 +103,28 @@ TEST_P(PolynomialFacetKinds, LowerBoundNeverExceedsTheDistance) {
   EXPECT_GT(facet.lower_bound2(lift(far)), 1.0);
 }
 
+// From points near the facet (its map extended 0.3 beyond the reference facet, moved by up to
+// 0.1: well inside the radius of curvature), a third of them nearest to an edge or corner:
+// never farther than a point of the facet (the edges searched hold the minimum).
+TEST_P(PolynomialFacetKinds, ClosestIsNoFartherThanAnyPointOfTheFacet) {
+  const LagrangeBasis& basis = lagrange_basis(GetParam().type, GetParam().order);
+  std::mt19937 rng(3);
+  const Eigen::MatrixXd X = bent_nodes(basis, rng);
+  const PolynomialFacet facet(basis, X, {}, {});
+  std::vector<Eigen::VectorXd> on_facet;
+  for (int i = 0; i < 2000; ++i) on_facet.push_back(X * basis.values(Eigen::VectorXd(random_parameter(basis.type(), rng))));
+  std::uniform_real_distribution<double> beyond(-0.3, 0.3), offset(-0.1, 0.1);
+  for (int i = 0; i < 100; ++i) {
+    Eigen::VectorXd u = random_parameter(basis.type(), rng);
+    if (i % 3 == 0) u += Eigen::VectorXd::NullaryExpr(u.size(), [&] { return beyond(rng); });
+    Eigen::VectorXd x = X * basis.values(u);
+    for (Eigen::Index k = 0; k < x.size(); ++k) x[k] += offset(rng);
+    const FacetHit hit = facet.closest(x);
+    EXPECT_NEAR(hit.dist2, (hit.at.p - x).squaredNorm(), 1e-14);
+    for (const Eigen::VectorXd& p : on_facet) ASSERT_LE(hit.dist2, (p - x).squaredNorm() + 1e-13) << x.transpose();
+  }
+}
+
 std::vector<Kind> kinds() {
   std::vector<Kind> out;
   for (ElementType type : {ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral})

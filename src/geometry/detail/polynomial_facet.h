@@ -90,6 +90,7 @@ class PolynomialFacet {
   FacetCoeffs C_;           // monomial coefficients of φ − x₀
   Eigen::MatrixXd samples_; // d × s: φ at the shape's sample parameters
   Eigen::Vector3d lo_, hi_;
+  std::array<Eigen::Vector3d, 4> edge_lo_, edge_hi_;  // 3D: the box of each edge's control points
   int n_planes_ = 0;
   std::array<Eigen::Vector3d, 6> normals_;  // unit, outward
   std::array<double, 6> offsets_{};         // normal · y ≤ offset on the control points
