@@ -200,16 +200,20 @@ void FitProblem<d>::add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode
 }
 
 template <int d>
-Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::normals(const SlideNode& s, const Eigen::MatrixXd& x) const {
-  Eigen::Matrix<double, d, Eigen::Dynamic> N(d, s.m);
-  for (int i = 0; i < s.m; ++i) N.col(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(x.col(s.node));
-  // Orthonormal basis of the normals' span (modified Gram–Schmidt; two normals are never parallel
-  // at a node the caller let slide on a curve).
-  for (int i = 0; i < s.m; ++i) {
-    for (int j = 0; j < i; ++j) N.col(i) -= N.col(j).dot(N.col(i)) * N.col(j);
+Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::orthonormal(Eigen::Matrix<double, d, Eigen::Dynamic> N) {
+  // Modified Gram–Schmidt; two normals are never parallel at a node the caller let slide on a curve.
+  for (Eigen::Index i = 0; i < N.cols(); ++i) {
+    for (Eigen::Index j = 0; j < i; ++j) N.col(i) -= N.col(j).dot(N.col(i)) * N.col(j);
     N.col(i).normalize();
   }
   return N;
+}
+
+template <int d>
+Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::normals(const SlideNode& s, const Eigen::MatrixXd& x) const {
+  Eigen::Matrix<double, d, Eigen::Dynamic> N(d, s.m);
+  for (int i = 0; i < s.m; ++i) N.col(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(x.col(s.node));
+  return orthonormal(std::move(N));
 }
 
 template <int d>
@@ -242,15 +246,6 @@ bool FitProblem<d>::project_slides(Eigen::MatrixXd& x) const {
 }
 
 template <int d>
-void FitProblem<d>::project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const {
-  for (const SlideNode& s : slides_) {
-    const Eigen::Matrix<double, d, Eigen::Dynamic> N = normals(s, x);
-    auto g = gradient.segment<d>(s.first);
-    g -= N * (N.transpose() * g);
-  }
-}
-
-template <int d>
 void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
   Eigen::SparseMatrix<double>& H = out.hessian;
   if (slide_offsets_.empty()) {
@@ -259,12 +254,19 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     slide_offsets_ = node_blocks(H, nodes);
   }
   std::vector<Eigen::Matrix<double, d, d>> P(slides_.size());
-  std::vector<Eigen::Matrix<double, d, Eigen::Dynamic>> N(slides_.size());
+  std::vector<Eigen::Matrix<double, d, Eigen::Dynamic>> N(slides_.size()), J(slides_.size());  // J: the ∇σ_i
+  std::vector<std::array<Eigen::Matrix<double, d, d>, 2>> curvature(slides_.size());          // the ∇²σ_i
   for (std::size_t k = 0; k < slides_.size(); ++k) {
-    // One surface: its level set says which normals bind the step (more at a crease it keeps to).
     const SlideNode& s = slides_[k];
-    if (s.m == 1) N[k] = s.sigma[0]->step_normals(x_.col(s.node), out.gradient.segment<d>(s.first));
-    else N[k] = normals(s, x_);
+    const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
+    // Each level set's questions in a row: a facet surface answers them from one search.
+    J[k].resize(d, s.m);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(s.m); ++i) {
+      J[k].col(static_cast<Eigen::Index>(i)) = s.sigma[i]->gradient(p);
+      curvature[k][i] = s.sigma[i]->hessian(p);
+    }
+    // One surface: its level set says which normals bind the step (more at a crease it keeps to).
+    N[k] = s.m == 1 ? Eigen::Matrix<double, d, Eigen::Dynamic>(s.sigma[0]->step_normals(p, out.gradient.segment<d>(s.first))) : orthonormal(J[k]);
     P[k] = Eigen::Matrix<double, d, d>::Identity() - N[k] * N[k].transpose();
   }
   const int* outer = H.outerIndexPtr();
@@ -303,14 +305,11 @@ void FitProblem<d>::constrain_hessian(HessianMode mode, Assembly& out) {
     Eigen::Matrix<double, d, d> B;
     for (int l = 0; l < d; ++l)
       for (int i = 0; i < d; ++i) B(i, l) = values[o[l * d + i]];
-    const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
     const Eigen::Matrix<double, d, 1> g = out.gradient.segment<d>(s.first);
-    Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
-    for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
-    const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
+    const Eigen::VectorXd lambda = (J[k].transpose() * J[k]).ldlt().solve(J[k].transpose() * g);
     Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
     for (int i = 0; i < s.m && N[k].cols() == s.m; ++i) {  // kept to a crease: its curvature is left out
-      const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
+      const Eigen::Matrix<double, d, d>& hs = curvature[k][static_cast<std::size_t>(i)];
       if (hs.allFinite()) K -= lambda[i] * P[k] * hs * P[k];
     }
     if (mode == HessianMode::Projected) {
@@ -396,15 +395,18 @@ double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x) {
   add_penalty(x, Want::Gradient, HessianMode::Projected, a);
   // A node sliding on one surface counts the descent that surface allows: at a crease of a
   // discrete surface, that of the facets' tangent cones (0 at a minimum on the crease, where
-  // the projection on the mean tangent plane is not).
+  // the projection on the mean tangent plane is not). A node on several, P g.
   double on_one = 0.0;
-  for (const SlideNode& s : slides_)
+  for (const SlideNode& s : slides_) {
+    auto g = a.gradient.segment<d>(s.first);
     if (s.m == 1) {
-      auto g = a.gradient.segment<d>(s.first);
       on_one += std::pow(s.sigma[0]->stationarity(x.col(s.node), g), 2);
       g.setZero();
+    } else {
+      const Eigen::Matrix<double, d, Eigen::Dynamic> N = normals(s, x);
+      g -= N * (N.transpose() * g);
     }
-  project_gradient(x, a.gradient);
+  }
   return std::sqrt(a.gradient.squaredNorm() + on_one);
 }
 

@@ -93,9 +93,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
     int m = 0;
     std::array<const LevelSetFunction*, 2> sigma{};
   };
+  static Eigen::Matrix<double, d, Eigen::Dynamic> orthonormal(Eigen::Matrix<double, d, Eigen::Dynamic> N);  // of span N
   Eigen::Matrix<double, d, Eigen::Dynamic> normals(const SlideNode& s, const Eigen::MatrixXd& x) const;
   bool project_slides(Eigen::MatrixXd& x) const;  // false when a node cannot be projected
-  void project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const;
   void constrain_hessian(HessianMode mode, Assembly& out);
   bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
 
