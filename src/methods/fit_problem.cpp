@@ -200,16 +200,20 @@ void FitProblem<d>::add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode
 }
 
 template <int d>
-Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::normals(const SlideNode& s, const Eigen::MatrixXd& x) const {
-  Eigen::Matrix<double, d, Eigen::Dynamic> N(d, s.m);
-  for (int i = 0; i < s.m; ++i) N.col(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(x.col(s.node));
-  // Orthonormal basis of the normals' span (modified Gram–Schmidt; two normals are never parallel
-  // at a node the caller let slide on a curve).
-  for (int i = 0; i < s.m; ++i) {
-    for (int j = 0; j < i; ++j) N.col(i) -= N.col(j).dot(N.col(i)) * N.col(j);
+Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::orthonormal(Eigen::Matrix<double, d, Eigen::Dynamic> N) {
+  // Modified Gram–Schmidt; two normals are never parallel at a node the caller let slide on a curve.
+  for (Eigen::Index i = 0; i < N.cols(); ++i) {
+    for (Eigen::Index j = 0; j < i; ++j) N.col(i) -= N.col(j).dot(N.col(i)) * N.col(j);
     N.col(i).normalize();
   }
   return N;
+}
+
+template <int d>
+Eigen::Matrix<double, d, Eigen::Dynamic> FitProblem<d>::normals(const SlideNode& s, const Eigen::MatrixXd& x) const {
+  Eigen::Matrix<double, d, Eigen::Dynamic> N(d, s.m);
+  for (int i = 0; i < s.m; ++i) N.col(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(x.col(s.node));
+  return orthonormal(std::move(N));
 }
 
 template <int d>
@@ -242,29 +246,25 @@ bool FitProblem<d>::project_slides(Eigen::MatrixXd& x) const {
 }
 
 template <int d>
-void FitProblem<d>::project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const {
-  for (const SlideNode& s : slides_) {
-    const Eigen::Matrix<double, d, Eigen::Dynamic> N = normals(s, x);
-    auto g = gradient.segment<d>(s.first);
-    g -= N * (N.transpose() * g);
-  }
-}
-
-template <int d>
 typename FitProblem<d>::SlideFrame FitProblem<d>::slide_frame(const SlideNode& s, const Eigen::Matrix<double, d, d>& B,
                                                              const Eigen::Matrix<double, d, 1>& g, HessianMode mode) const {
   SlideFrame f;
-  // One surface: its level set says which normals bind the step (more at a crease it keeps to).
-  if (s.m == 1) f.N = s.sigma[0]->step_normals(x_.col(s.node), g);
-  else f.N = normals(s, x_);
-  f.P = Eigen::Matrix<double, d, d>::Identity() - f.N * f.N.transpose();
   const Eigen::Matrix<double, d, 1> p = x_.col(s.node);
-  Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
-  for (int i = 0; i < s.m; ++i) J.row(i) = s.sigma[static_cast<std::size_t>(i)]->gradient(p).transpose();
-  const Eigen::VectorXd lambda = (J * J.transpose()).ldlt().solve(J * g);
+  // Each level set's questions in a row: a facet surface answers them from one search.
+  Eigen::Matrix<double, d, Eigen::Dynamic> J(d, s.m);  // the ∇σ_i
+  std::array<Eigen::Matrix<double, d, d>, 2> curvature;  // the ∇²σ_i
+  for (std::size_t i = 0; i < static_cast<std::size_t>(s.m); ++i) {
+    J.col(static_cast<Eigen::Index>(i)) = s.sigma[i]->gradient(p);
+    curvature[i] = s.sigma[i]->hessian(p);
+  }
+  // One surface: its level set says which normals bind the step (more at a crease it keeps to).
+  if (s.m == 1) f.N = s.sigma[0]->step_normals(p, g);
+  else f.N = orthonormal(J);
+  f.P = Eigen::Matrix<double, d, d>::Identity() - f.N * f.N.transpose();
+  const Eigen::VectorXd lambda = (J.transpose() * J).ldlt().solve(J.transpose() * g);
   Eigen::Matrix<double, d, d> K = Eigen::Matrix<double, d, d>::Zero();
   for (int i = 0; i < s.m && f.N.cols() == s.m; ++i) {  // kept to a crease: its curvature is left out
-    const Eigen::Matrix<double, d, d> hs = s.sigma[static_cast<std::size_t>(i)]->hessian(p);
+    const Eigen::Matrix<double, d, d>& hs = curvature[static_cast<std::size_t>(i)];
     if (hs.allFinite()) K -= lambda[i] * f.P * hs * f.P;
   }
   if (mode == HessianMode::Projected) {
@@ -437,15 +437,18 @@ double FitProblem<d>::gradient_norm(const Eigen::MatrixXd& x, Assembly& metric) 
   add_penalty(x, Want::Gradient, HessianMode::Projected, a);
   // A node sliding on one surface counts the descent that surface allows: at a crease of a
   // discrete surface, that of the facets' tangent cones (0 at a minimum on the crease, where
-  // the projection on the mean tangent plane is not).
+  // the projection on the mean tangent plane is not). A node on several, P g.
   double on_one = 0.0;
-  for (const SlideNode& s : slides_)
+  for (const SlideNode& s : slides_) {
+    auto g = a.gradient.segment<d>(s.first);
     if (s.m == 1) {
-      auto g = a.gradient.segment<d>(s.first);
       on_one += std::pow(s.sigma[0]->stationarity(x.col(s.node), g), 2);
       g.setZero();
+    } else {
+      const Eigen::Matrix<double, d, Eigen::Dynamic> N = normals(s, x);
+      g -= N * (N.transpose() * g);
     }
-  project_gradient(x, a.gradient);
+  }
   return std::sqrt(a.gradient.squaredNorm() + on_one);
 }
 

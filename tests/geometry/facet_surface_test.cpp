@@ -6,8 +6,10 @@
 #include "meshmorph/geometry/facet_surface.h"
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -167,6 +169,67 @@ INSTANTIATE_TEST_SUITE_P(CurvedFacets, FacetSurfaceCurved,
                                          Case{ElementType::Tetrahedron, 2}, Case{ElementType::Tetrahedron, 3},
                                          Case{ElementType::Hexahedron, 2}, Case{ElementType::Hexahedron, 3}),
                          name);
+
+// σ, ∇σ, ∇²σ and the closest point at one point.
+struct Answer {
+  double value;
+  Eigen::VectorXd gradient, closest;
+  Eigen::MatrixXd hessian;
+};
+
+Answer answer(const LevelSetFunction& sigma, const Eigen::VectorXd& x) {
+  return {sigma.value(x), sigma.gradient(x), *sigma.closest_point(x), sigma.hessian(x)};
+}
+
+void expect_same(const Answer& a, const Answer& b) {
+  EXPECT_EQ(a.value, b.value);
+  EXPECT_EQ(a.gradient, b.gradient);
+  EXPECT_EQ(a.closest, b.closest);
+  EXPECT_EQ(a.hessian, b.hessian);
+}
+
+// Each thread reuses its last closest-point search for queries at the same point: answers do
+// not depend on the order of the queries, nor on the surface that lived at the same address
+// before (a flat and a bent bottom differ at every point).
+TEST(FacetSurface, AnswersDoNotDependOnTheQueriesBefore) {
+  const Case c{ElementType::Tetrahedron, 2};
+  const Bottom flat = bottom(c, false), bent = bottom(c, true);
+  const std::vector<Eigen::VectorXd> xs = points(3, true, 6);
+  std::vector<Answer> first;
+  {
+    const LevelSetFunction sigma = facet_surface(bent.mesh, bent.topology, bent.facets);
+    for (const Eigen::VectorXd& x : xs) first.push_back(answer(sigma, x));
+  }
+  std::optional<LevelSetFunction> sigma;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    SCOPED_TRACE(testing::Message() << "x = " << xs[i].transpose());
+    sigma.emplace(facet_surface(flat.mesh, flat.topology, flat.facets));
+    EXPECT_NEAR(sigma->value(xs[i]), -xs[i][2], 1e-14);
+    sigma.reset();
+    sigma.emplace(facet_surface(bent.mesh, bent.topology, bent.facets));  // often where the flat one was
+    expect_same(answer(*sigma, xs[i]), first[i]);
+    const std::size_t j = xs.size() - 1 - i;  // the other end of the list, then back
+    expect_same(answer(*sigma, xs[j]), first[j]);
+    expect_same(answer(*sigma, xs[i]), first[i]);
+  }
+}
+
+TEST(FacetSurface, ConcurrentCallsGiveTheSerialResults) {
+  const Bottom b = bottom(Case{ElementType::Hexahedron, 3}, true);
+  const LevelSetFunction sigma = facet_surface(b.mesh, b.topology, b.facets);
+  const std::vector<Eigen::VectorXd> xs = points(3, true, 7);
+  std::vector<Answer> serial;
+  for (const Eigen::VectorXd& x : xs) serial.push_back(answer(sigma, x));
+  std::vector<std::vector<Answer>> parallel(4);
+  std::vector<std::thread> threads;
+  for (std::vector<Answer>& out : parallel)
+    threads.emplace_back([&sigma, &xs, &out] {
+      for (const Eigen::VectorXd& x : xs) out.push_back(answer(sigma, x));
+    });
+  for (std::thread& t : threads) t.join();
+  for (const std::vector<Answer>& out : parallel)
+    for (std::size_t i = 0; i < xs.size(); ++i) expect_same(out[i], serial[i]);
+}
 
 }  // namespace
 }  // namespace meshmorph

@@ -95,9 +95,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
     int m = 0;
     std::array<const LevelSetFunction*, 2> sigma{};
   };
+  static Eigen::Matrix<double, d, Eigen::Dynamic> orthonormal(Eigen::Matrix<double, d, Eigen::Dynamic> N);  // of span N
   Eigen::Matrix<double, d, Eigen::Dynamic> normals(const SlideNode& s, const Eigen::MatrixXd& x) const;
   bool project_slides(Eigen::MatrixXd& x) const;  // false when a node cannot be projected
-  void project_gradient(const Eigen::MatrixXd& x, Eigen::VectorXd& gradient) const;
   // A slide node's step constraints: N (the normals that bind its step), P = I − N Nᵀ and
   // the addition to its diagonal block K + c N Nᵀ (constraint curvature, normal stiffness),
   // from its unconstrained diagonal block B and gradient g at the current iterate.
