@@ -14,9 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
-#include <time.h>
-
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/quality/metric_registry.h"
@@ -27,15 +24,10 @@ namespace {
 
 using namespace meshmorph;
 using bench::Clock;
+using bench::cpu_seconds;
 using bench::peak_rss_mb;
 using bench::seconds_since;
 
-// CPU time of the whole process (all threads): robust to other load on a shared machine.
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 
 // The interior nodes moved at random by up to 10% of the node spacing: a valid state where

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Wall clock and peak memory, shared by the benchmark executables.
+// Wall clock, CPU time and peak memory, shared by the benchmark executables.
 #include <chrono>
 
 #include <sys/resource.h>
+#include <time.h>
 
 namespace meshmorph::bench {
 
@@ -11,6 +12,13 @@ using Clock = std::chrono::steady_clock;
 
 inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// CPU time of the whole process (all threads): robust to other load on a shared machine.
+inline double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 /// Peak resident memory of this process in MiB.

@@ -13,8 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <time.h>
-
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/quality/metric_registry.h"
@@ -25,14 +23,10 @@ namespace {
 
 using namespace meshmorph;
 using bench::Clock;
+using bench::cpu_seconds;
 using bench::peak_rss_mb;
 using bench::seconds_since;
 
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 struct Timing {
   double wall = 1e300, cpu = 1e300;
@@ -85,7 +79,7 @@ int run(const Mesh& mesh, const std::string& name, int threads, int repeats, Hes
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s MESH THREADS [REPEATS]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s MESH THREADS [REPEATS] [projected|exact]\n", argv[0]);
     return 2;
   }
   const std::string path = argv[1];
