@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: MIT
 # make demo | test | bench | sanitize-test — each installs what is missing, then builds.
+# sanitize-test (ASan + UBSan, Debug) runs every test but those labelled `slow`: ones that
+# take minutes there (tests/cli/CMakeLists.txt says which); `make test` runs them all.
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
