@@ -1,5 +1,8 @@
 # SPDX-License-Identifier: MIT
 # make demo | test | bench | sanitize-test — each installs what is missing, then builds.
+# sanitize-test (ASan + UBSan, Debug) runs every test but those labelled `slow`, which take
+# minutes there: gtest ones named by meshmorph_add_test(... SLOW filter) in tests/CMakeLists.txt,
+# CLI ones labelled in tests/cli/CMakeLists.txt. `make test` runs them all.
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=

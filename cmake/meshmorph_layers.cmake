@@ -28,9 +28,11 @@ function(meshmorph_add_layer layer)
   install(TARGETS ${target} EXPORT meshmorphTargets ARCHIVE DESTINATION lib FILE_SET HEADERS DESTINATION include)
 endfunction()
 
-# meshmorph_add_test(<layer> [LIBS ...]) builds tests/<layer>/*_test.cpp into test_meshmorph_<layer>.
+# meshmorph_add_test(<layer> [LIBS ...] [SLOW <gtest filter>]) builds tests/<layer>/*_test.cpp into
+# test_meshmorph_<layer>; its tests get the label "unit", and those that match SLOW (a gtest
+# filter, "Suite.Name:Suite.*") "slow" too: they are discovered apart (TEST_FILTER).
 function(meshmorph_add_test layer)
-  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "SLOW" "LIBS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${layer}/*_test.cpp)
   if(NOT sources)
     return()
@@ -41,5 +43,14 @@ function(meshmorph_add_test layer)
   target_link_libraries(${target} PRIVATE meshmorph::${layer} ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   target_compile_options(${target} PRIVATE ${MESHMORPH_WARNINGS})
   target_compile_definitions(${target} PRIVATE MESHMORPH_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/data")
-  gtest_discover_tests(${target} PROPERTIES LABELS unit DISCOVERY_TIMEOUT 60)
+  if(ARG_SLOW)
+    gtest_discover_tests(${target} TEST_FILTER "-${ARG_SLOW}" PROPERTIES LABELS unit DISCOVERY_TIMEOUT 60)
+    # Discovery cannot carry a list-valued property: the labels are set by ctest, after it.
+    gtest_discover_tests(${target} TEST_FILTER "${ARG_SLOW}" TEST_LIST ${target}_slow DISCOVERY_TIMEOUT 60)
+    set(labels ${CMAKE_CURRENT_BINARY_DIR}/${target}_slow_labels.cmake)
+    file(WRITE ${labels} "if(${target}_slow)\n  set_tests_properties(\${${target}_slow} PROPERTIES LABELS \"unit;slow\")\nendif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels})
+  else()
+    gtest_discover_tests(${target} PROPERTIES LABELS unit DISCOVERY_TIMEOUT 60)
+  endif()
 endfunction()

@@ -259,7 +259,7 @@ TEST(OptimizeSlide, CurvedBoundarySlidesOnTheInputsDiscreteCurves) {
 // from the exact sphere than the input's facets are (sampled 24 per direction, with 2% margin
 // for the sampling), and the worst μ and F end below those with the sphere fixed. rtol 1e-8:
 // Newton stalls near 1e-8 there (docs/optimize.md, What is left). The P3 case (elevated, its
-// sphere nodes moved onto the sphere) converges at 1e-10, in tests/cli/check_optimize.sh.
+// sphere nodes moved onto the sphere) converges at 1e-10, in tests/cli/check_optimize_p3.sh.
 TEST(OptimizeSlide, SphereSlidesOnItsOwnCurvedFacets) {
   const std::string meshes = std::string(MESHMORPH_TEST_DATA) + "/../../examples/meshes/";
   {
