@@ -405,8 +405,6 @@ HessianBlocks FitProblem<d>::hessian_blocks() {
   HessianBlocks b;
   b.size = d;
   const std::int32_t* red = dofs_.reduced_index().data();
-  std::vector<std::int32_t> slide_of_node(mesh_->n_nodes(), -1);
-  for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_node[static_cast<std::size_t>(slides_[k].node)] = static_cast<std::int32_t>(k);
   for (std::size_t i = 0; i < mesh_->n_nodes(); ++i) {
     int free[d], m = 0;
     for (int k = 0; k < d; ++k)
@@ -414,7 +412,8 @@ HessianBlocks FitProblem<d>::hessian_blocks() {
     if (m == 0) continue;
     b.first.push_back(red[d * i + free[0]]);
     Eigen::Matrix<double, d, d> B = Eigen::Map<const Eigen::Matrix<double, d, d>>(node_blocks_.data() + i * d * d);
-    if (const std::int32_t k = slide_of_node[i]; k >= 0) {
+    // A slide node has all its DOFs free: its first one finds its slot.
+    if (const std::int32_t k = m == d ? slide_of_row_[static_cast<std::size_t>(b.first.back())] : -1; k >= 0) {
       const SlideFrame& f = frames_[static_cast<std::size_t>(k)];
       B = f.P * B * f.P + f.add;
     }
