@@ -121,8 +121,8 @@ struct KrylovNewtonOptions {
 /// KrylovNewtonOptions. Every CG iterate before a direction of nonpositive curvature is a
 /// descent direction (Dembo–Steihaug), and the step is the last of them. With
 /// NewtonOptions::exact_first the exact Hessian is used once a projected step was taken in
-/// full; nonpositive curvature at the first CG iteration, or a failed line search, return to
-/// the projected Hessian. The line search, stopping rules (decrement, taken only from a CG
+/// full; nonpositive curvature in its CG solve (the step is then redone with the projected
+/// Hessian), or a failed line search, return to the projected Hessian. The line search, stopping rules (decrement, taken only from a CG
 /// solve that reached its tolerance) and on_step are newton()'s.
 /// NewtonStats::krylov_iterations counts the CG iterations.
 NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOptions& options,
