@@ -12,7 +12,7 @@
 #include "energy/detail/element_kernel.h"
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/error.h"
-#include "meshmorph/fem/reference_element.h"
+#include "meshmorph/fem/tensor_basis.h"
 
 namespace meshmorph {
 namespace {
@@ -61,51 +61,21 @@ int threads_of(int requested) { return requested > 0 ? requested : omp_get_max_t
 // for the blocked kernel to amortise the packing of ∇N.
 constexpr int k_batch = 16;
 
-// The 1D factors of a hexahedral block: its nodes on a lattice of P coordinates per direction,
-// its points the tensor rule (x fastest), ∂N_a/∂ξ = l_i'(ξ) l_j(η) l_k(ζ) and so on. Checked
-// against the table's gradients; P = 0 (dense products) where anything differs.
+// The 1D factors of a hexahedral block: its nodes on a lattice of P coordinates per direction
+// (tensor_basis), its points the tensor rule (x fastest), ∂N_a/∂ξ = l_i'(ξ) l_j(η) l_k(ζ) and so
+// on. Checked against the table's gradients; P = 0 (dense products) where anything differs.
 template <int d>
 typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const ShapeTable& table) {
   typename HessianAction<d>::Tensor t;
   if (d != 3 || block.type != ElementType::Hexahedron) return t;
-  const ReferenceElement& ref = reference_element(block.type, block.order);
-  std::vector<double> xs(ref.nodes.row(0).begin(), ref.nodes.row(0).end());
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), xs.end());
-  const int P = static_cast<int>(xs.size()), n = table.n_nodes(), Q = table.n_points();
+  const TensorBasis& basis = tensor_basis(block.type, block.order);
+  const int P = basis.P, n = table.n_nodes(), Q = table.n_points();
   const int m = static_cast<int>(std::lround(std::cbrt(Q)));
-  if (P * P * P != n || m * m * m != Q) return t;
-  const auto index_of = [&](double v) {
-    for (int i = 0; i < P; ++i)
-      if (std::abs(xs[static_cast<std::size_t>(i)] - v) < 1e-12) return i;
-    return -1;
-  };
-  std::vector<std::int32_t> node(static_cast<std::size_t>(n), -1);
-  for (int a = 0; a < n; ++a) {
-    int lattice = 0;
-    for (int k = d - 1; k >= 0; --k) {
-      const int i = index_of(ref.nodes(k, a));
-      if (i < 0) return t;
-      lattice = lattice * P + i;
-    }
-    node[static_cast<std::size_t>(lattice)] = a;
-  }
-  if (std::count(node.begin(), node.end(), -1) > 0) return t;
-  Eigen::MatrixXd B(m, P), D(m, P);
-  for (int q = 0; q < m; ++q) {
-    const double x = table.points(0, q);
-    for (int i = 0; i < P; ++i) {
-      double value = 1.0, slope = 0.0;
-      for (int j = 0; j < P; ++j) {
-        if (j == i) continue;
-        const double h = xs[static_cast<std::size_t>(i)] - xs[static_cast<std::size_t>(j)];
-        slope = slope * (x - xs[static_cast<std::size_t>(j)]) / h + value / h;  // product rule
-        value *= (x - xs[static_cast<std::size_t>(j)]) / h;
-      }
-      B(q, i) = value;
-      D(q, i) = slope;
-    }
-  }
+  if (P == 0 || P * P * P != n || m * m * m != Q) return t;
+  std::vector<double> x(static_cast<std::size_t>(m));
+  for (int q = 0; q < m; ++q) x[static_cast<std::size_t>(q)] = table.points(0, q);
+  Eigen::MatrixXd B, D;
+  basis.tabulate(x, B, D);
   const double scale = table.dN.cwiseAbs().maxCoeff();
   for (int q = 0; q < Q; ++q) {
     const int qi[3] = {q % m, (q / m) % m, q / (m * m)};
@@ -113,7 +83,7 @@ typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const S
       if (std::abs(table.points(k, q) - table.points(0, qi[k])) > 1e-14) return t;
     for (int lattice = 0; lattice < n; ++lattice) {
       const int li[3] = {lattice % P, (lattice / P) % P, lattice / (P * P)};
-      const int a = node[static_cast<std::size_t>(lattice)];
+      const int a = basis.node[static_cast<std::size_t>(lattice)];
       for (int j = 0; j < d; ++j) {
         double g = 1.0;
         for (int k = 0; k < d; ++k) g *= (k == j ? D : B)(qi[k], li[k]);
@@ -125,7 +95,7 @@ typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const S
   t.m = m;
   t.B = std::move(B);
   t.D = std::move(D);
-  t.node = std::move(node);
+  t.node = basis.node;
   return t;
 }
 
