@@ -133,42 +133,50 @@ template <int P_, int m_>
   const int P = P_ > 0 ? P_ : t.P, m = m_ > 0 ? m_ : t.m;
   const auto B = [&](int q, int i) { return t.B(q, i); };
   const auto D = [&](int q, int i) { return t.D(q, i); };
-  // n values of 3 components, zeroed.
-  const auto field = [](std::vector<double>& v, int n) {
-    v.assign(static_cast<std::size_t>(3 * k_lanes * n), 0.0);
+  // n values of 3 components; zeroed only where a pass scatters into them (E), the others are
+  // summed in registers and stored.
+  const auto field = [](std::vector<double>& v, int n, bool zeroed) {
+    const auto size = static_cast<std::size_t>(3 * k_lanes * n);
+    if (zeroed)
+      v.assign(size, 0.0);
+    else
+      v.resize(size);
     return reinterpret_cast<Lanes*>(v.data());
   };
-  Lanes* A0 = field(s.A0, m * P * P);
-  Lanes* A1 = field(s.A1, m * P * P);
+  Lanes* A0 = field(s.A0, m * P * P, false);
+  Lanes* A1 = field(s.A1, m * P * P, false);
   const auto* u = reinterpret_cast<const Lanes*>(s.u.data());
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int qx = 0; qx < m; ++qx) {
-        Lanes* a0 = A0 + 3 * (qx + m * (iy + P * iz));
-        Lanes* a1 = A1 + 3 * (qx + m * (iy + P * iz));
+        Lanes a0[3] = {}, a1[3] = {};
         for (int ix = 0; ix < P; ++ix) {
           const Lanes* ui = u + 3 * (ix + P * (iy + P * iz));
           const double b = B(qx, ix), dd = D(qx, ix);
           for (int k = 0; k < 3; ++k) a0[k] += b * ui[k], a1[k] += dd * ui[k];
         }
+        const int o = 3 * (qx + m * (iy + P * iz));
+        for (int k = 0; k < 3; ++k) A0[o + k] = a0[k], A1[o + k] = a1[k];
       }
-  Lanes* C00 = field(s.C00, m * m * P);
-  Lanes* C01 = field(s.C01, m * m * P);
-  Lanes* C10 = field(s.C10, m * m * P);
+  Lanes* C00 = field(s.C00, m * m * P, false);
+  Lanes* C01 = field(s.C01, m * m * P, false);
+  Lanes* C10 = field(s.C10, m * m * P, false);
   for (int iz = 0; iz < P; ++iz)
     for (int qy = 0; qy < m; ++qy)
       for (int qx = 0; qx < m; ++qx) {
-        const int o = 3 * (qx + m * (qy + m * iz));
+        Lanes c00[3] = {}, c01[3] = {}, c10[3] = {};
         for (int iy = 0; iy < P; ++iy) {
           const Lanes* a0 = A0 + 3 * (qx + m * (iy + P * iz));
           const Lanes* a1 = A1 + 3 * (qx + m * (iy + P * iz));
           const double b = B(qy, iy), dd = D(qy, iy);
-          for (int k = 0; k < 3; ++k) C00[o + k] += b * a0[k], C01[o + k] += dd * a0[k], C10[o + k] += b * a1[k];
+          for (int k = 0; k < 3; ++k) c00[k] += b * a0[k], c01[k] += dd * a0[k], c10[k] += b * a1[k];
         }
+        const int o = 3 * (qx + m * (qy + m * iz));
+        for (int k = 0; k < 3; ++k) C00[o + k] = c00[k], C01[o + k] = c01[k], C10[o + k] = c10[k];
       }
-  Lanes* E00 = field(s.E00, m * m * P);
-  Lanes* E01 = field(s.E01, m * m * P);
-  Lanes* E10 = field(s.E10, m * m * P);
+  Lanes* E00 = field(s.E00, m * m * P, true);
+  Lanes* E01 = field(s.E01, m * m * P, true);
+  Lanes* E10 = field(s.E10, m * m * P, true);
   for (int qz = 0; qz < m; ++qz)
     for (int qy = 0; qy < m; ++qy)
       for (int qx = 0; qx < m; ++qx) {
@@ -194,30 +202,32 @@ template <int P_, int m_>
           for (int k = 0; k < 3; ++k) E10[o + k] += b * h[k], E01[o + k] += b * h[3 + k], E00[o + k] += dd * h[6 + k];
         }
       }
-  Lanes* F0 = field(s.F0, m * P * P);
-  Lanes* F1 = field(s.F1, m * P * P);
+  Lanes* F0 = field(s.F0, m * P * P, false);
+  Lanes* F1 = field(s.F1, m * P * P, false);
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int qx = 0; qx < m; ++qx) {
-        Lanes* f0 = F0 + 3 * (qx + m * (iy + P * iz));
-        Lanes* f1 = F1 + 3 * (qx + m * (iy + P * iz));
+        Lanes f0[3] = {}, f1[3] = {};
         for (int qy = 0; qy < m; ++qy) {
           const int o = 3 * (qx + m * (qy + m * iz));
           const double b = B(qy, iy), dd = D(qy, iy);
           for (int k = 0; k < 3; ++k) f0[k] += b * E00[o + k] + dd * E01[o + k], f1[k] += b * E10[o + k];
         }
+        const int o = 3 * (qx + m * (iy + P * iz));
+        for (int k = 0; k < 3; ++k) F0[o + k] = f0[k], F1[o + k] = f1[k];
       }
-  Lanes* y = field(s.y, P * P * P);
+  Lanes* y = field(s.y, P * P * P, false);
   for (int iz = 0; iz < P; ++iz)
     for (int iy = 0; iy < P; ++iy)
       for (int ix = 0; ix < P; ++ix) {
-        Lanes* yi = y + 3 * (ix + P * (iy + P * iz));
+        Lanes yi[3] = {};
         for (int qx = 0; qx < m; ++qx) {
           const Lanes* f0 = F0 + 3 * (qx + m * (iy + P * iz));
           const Lanes* f1 = F1 + 3 * (qx + m * (iy + P * iz));
           const double b = B(qx, ix), dd = D(qx, ix);
           for (int k = 0; k < 3; ++k) yi[k] += b * f0[k] + dd * f1[k];
         }
+        for (int k = 0; k < 3; ++k) y[3 * (ix + P * (iy + P * iz)) + k] = yi[k];
       }
 }
 
@@ -328,15 +338,19 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
 template <int d>
 template <class Store>
 void EnergyAssembler<d>::gather(const std::vector<double>& local, int width, int threads, Store store) const {
+  constexpr int max_width = k_packed(d);
+  MESHMORPH_CHECK(width <= max_width, "EnergyAssembler::gather: too wide");
   const auto n_nodes = static_cast<std::ptrdiff_t>(mesh_->n_nodes());
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static)
-  for (std::ptrdiff_t i = 0; i < n_nodes; ++i)
-    for (int k = 0; k < width; ++k) {
-      double sum = 0.0;
-      for (std::int64_t s = node_slot_offset_[static_cast<std::size_t>(i)]; s < node_slot_offset_[static_cast<std::size_t>(i) + 1]; ++s)
-        sum += local[static_cast<std::size_t>(width * node_slots_[static_cast<std::size_t>(s)] + k)];
-      store(i, k, sum);
+  for (std::ptrdiff_t i = 0; i < n_nodes; ++i) {
+    // Slot by slot, all entries at once: each entry still sums its slots in slot order.
+    double sum[max_width] = {};
+    for (std::int64_t s = node_slot_offset_[static_cast<std::size_t>(i)]; s < node_slot_offset_[static_cast<std::size_t>(i) + 1]; ++s) {
+      const double* l = local.data() + width * node_slots_[static_cast<std::size_t>(s)];
+      for (int k = 0; k < width; ++k) sum[k] += l[k];
     }
+    for (int k = 0; k < width; ++k) store(i, k, sum[k]);
+  }
 }
 
 template <int d>
