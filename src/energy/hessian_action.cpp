@@ -61,41 +61,18 @@ int threads_of(int requested) { return requested > 0 ? requested : omp_get_max_t
 // for the blocked kernel to amortise the packing of ∇N.
 constexpr int k_batch = 16;
 
-// The 1D factors of a hexahedral block: its nodes on a lattice of P coordinates per direction
-// (tensor_basis), its points the tensor rule (x fastest), ∂N_a/∂ξ = l_i'(ξ) l_j(η) l_k(ζ) and so
-// on. Checked against the table's gradients; P = 0 (dense products) where anything differs.
+// The 1D factors of a hexahedral block whose table is a tensor grid (ShapeTable::tensor);
+// P = 0 (dense products) elsewhere.
 template <int d>
 typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const ShapeTable& table) {
   typename HessianAction<d>::Tensor t;
-  if (d != 3 || block.type != ElementType::Hexahedron) return t;
-  const TensorBasis& basis = tensor_basis(block.type, block.order);
-  const int P = basis.P, n = table.n_nodes(), Q = table.n_points();
-  const int m = static_cast<int>(std::lround(std::cbrt(Q)));
-  if (P == 0 || P * P * P != n || m * m * m != Q) return t;
-  std::vector<double> x(static_cast<std::size_t>(m));
-  for (int q = 0; q < m; ++q) x[static_cast<std::size_t>(q)] = table.points(0, q);
-  Eigen::MatrixXd B, D;
-  basis.tabulate(x, B, D);
-  const double scale = table.dN.cwiseAbs().maxCoeff();
-  for (int q = 0; q < Q; ++q) {
-    const int qi[3] = {q % m, (q / m) % m, q / (m * m)};
-    for (int k = 0; k < d; ++k)
-      if (std::abs(table.points(k, q) - table.points(0, qi[k])) > 1e-14) return t;
-    for (int lattice = 0; lattice < n; ++lattice) {
-      const int li[3] = {lattice % P, (lattice / P) % P, lattice / (P * P)};
-      const int a = basis.node[static_cast<std::size_t>(lattice)];
-      for (int j = 0; j < d; ++j) {
-        double g = 1.0;
-        for (int k = 0; k < d; ++k) g *= (k == j ? D : B)(qi[k], li[k]);
-        if (std::abs(g - table.dN(a, q * d + j)) > 1e-11 * scale) return t;
-      }
-    }
-  }
-  t.P = P;
-  t.m = m;
-  t.B = std::move(B);
-  t.D = std::move(D);
-  t.node = basis.node;
+  if (d != 3 || block.type != ElementType::Hexahedron || !table.tensor) return t;
+  const TensorGrid& g = *table.tensor;
+  t.P = g.basis->P;
+  t.m = g.m;
+  t.B = g.B;
+  t.D = g.D;
+  t.node = g.basis->node;
   return t;
 }
 
@@ -297,15 +274,23 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     const bool lanes = out.tensor[bi].P > 0;
     const std::size_t padded = lanes ? (block.n_cells() + k_lanes - 1) / k_lanes * k_lanes : block.n_cells();
     K.assign(padded * static_cast<std::size_t>(Q) * k_packed(dd), 0.0f);
+    const TensorGrid* grid = table.tensor && table.dim == d ? table.tensor.get() : nullptr;
 #pragma omp parallel for num_threads(threads_of(threads)) schedule(static) reduction(&& : finite)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       detail::NodalMatrix<d> X(d, n);
       const std::int32_t* nodes = block.cell(static_cast<std::size_t>(c));
       for (int a = 0; a < n; ++a) X.col(a) = x.col(nodes[a]);
       const QuadratureTarget<d>* t = bt.cell(static_cast<std::size_t>(c));
+      // The reference gradients at all points, by sum factorization where the table allows,
+      // and T as element_kernel forms it.
+      thread_local Eigen::MatrixXd Gs;
+      Gs.resize(d, d * Q);
+      if (grid)
+        grid_gradients(*grid, X.data(), d, Gs.data());
+      else
+        for (int q = 0; q < Q; ++q) Gs.middleCols(q * d, d).noalias() = X.lazyProduct(table.grad(q));
       for (int q = 0; q < Q; ++q) {
-        const MatT<d> G = X.lazyProduct(table.grad(q));
-        const MatT<d> T = G * t[q].W_inv;
+        const MatT<d> T = Eigen::Map<const MatT<d>>(Gs.data() + d * d * q).lazyProduct(t[q].W_inv);
         const MetricEval<d> ev = metric.eval(T, Want::Hessian);
         if (!(ev.mu < std::numeric_limits<double>::infinity())) {
           finite = 0;

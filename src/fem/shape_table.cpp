@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/fem/shape_table.h"
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -9,6 +10,23 @@
 #include "meshmorph/fem/jacobian.h"
 
 namespace meshmorph {
+namespace {
+
+// The grid of `points` if they are the tensor grid of their first m coordinates (x fastest).
+std::shared_ptr<const TensorGrid> grid_of(ElementType type, int order, const Eigen::MatrixXd& points) {
+  const auto dim = static_cast<int>(points.rows());
+  const auto Q = static_cast<int>(points.cols());
+  const int m = static_cast<int>(std::lround(std::pow(Q, 1.0 / dim)));
+  if (tensor_basis(type, order).P == 0 || static_cast<int>(std::lround(std::pow(m, dim))) != Q) return nullptr;
+  for (int q = 0; q < Q; ++q)
+    for (int k = 0, rest = q; k < dim; ++k, rest /= m)
+      if (points(k, q) != points(0, rest % m)) return nullptr;
+  std::vector<double> x(static_cast<std::size_t>(m));
+  for (int q = 0; q < m; ++q) x[static_cast<std::size_t>(q)] = points(0, q);
+  return std::make_shared<const TensorGrid>(tensor_grid(type, order, x));
+}
+
+}  // namespace
 
 ShapeTable tabulate(ElementType type, int order, const Eigen::MatrixXd& points) {
   const auto& basis = lagrange_basis(type, order);
@@ -24,6 +42,7 @@ ShapeTable tabulate(ElementType type, int order, const Eigen::MatrixXd& points) 
     t.N.col(q) = basis.values(points.col(q));
     t.dN.middleCols(q * t.dim, t.dim) = basis.gradients(points.col(q));
   }
+  t.tensor = grid_of(type, order, points);
   return t;
 }
 

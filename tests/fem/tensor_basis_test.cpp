@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/lagrange_basis.h"
+#include "meshmorph/fem/shape_table.h"
 #include "support/element_cases.h"
 
 namespace meshmorph {
@@ -42,6 +43,28 @@ TEST_P(TensorBasisSweep, ProductsOfTheOneDimensionalBasisAreTheNodalBasis) {
         EXPECT_NEAR(slope, G(a, j), 1e-11);
       }
     }
+  }
+}
+
+// Sum factorization over a table's grid is the dense product with its gradients: X ∇N for
+// grid_gradients, R ∇Nᵀ for its transpose, on Gauss and Lobatto rules.
+TEST_P(TensorBasisSweep, GridGradientsAreTheDenseProducts) {
+  const auto [type, order] = GetParam();
+  for (QuadratureFamily family : {QuadratureFamily::Gauss, QuadratureFamily::Lobatto}) {
+    const ShapeTable& table = shape_table(type, order, 2 * order + 1, family);
+    if (is_simplex(type)) {
+      EXPECT_EQ(table.tensor, nullptr);
+      continue;
+    }
+    ASSERT_NE(table.tensor, nullptr);
+    const int dim = table.dim, n = table.n_nodes(), Q = table.n_points();
+    std::srand(11);
+    const Eigen::MatrixXd X = Eigen::MatrixXd::Random(dim, n), R = Eigen::MatrixXd::Random(dim, dim * Q);
+    Eigen::MatrixXd G(dim, dim * Q), Y(dim, n);
+    grid_gradients(*table.tensor, X.data(), dim, G.data());
+    grid_gradients_transpose(*table.tensor, R.data(), dim, Y.data());
+    EXPECT_LT((G - X * table.dN).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((Y - R * table.dN.transpose()).cwiseAbs().maxCoeff(), 1e-12);
   }
 }
 

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <memory>
+
 #include <Eigen/Core>
 
 #include "meshmorph/fem/lagrange_basis.h"
 #include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/tensor_basis.h"
 
 namespace meshmorph {
 
@@ -19,6 +22,9 @@ struct ShapeTable {
   Eigen::MatrixXd N;        ///< n_nodes × n_points
   /// n_nodes × (dim · n_points); columns [q·dim, q·dim + dim) hold ∂N_a/∂ξ at point q.
   Eigen::MatrixXd dN;
+  /// The 1D factors of dN where the points are a tensor grid (x fastest) of a quadrilateral
+  /// or hexahedron: grid_gradients then gives X dN by sum factorization. Null elsewhere.
+  std::shared_ptr<const TensorGrid> tensor;
 
   int n_nodes() const { return static_cast<int>(N.rows()); }
   int n_points() const { return static_cast<int>(N.cols()); }

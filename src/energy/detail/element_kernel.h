@@ -6,6 +6,7 @@
 
 #include "meshmorph/energy/element_energy.h"
 #include "energy/detail/isotropic_projection.h"
+#include "meshmorph/fem/tensor_basis.h"
 
 namespace meshmorph::detail {
 
@@ -22,6 +23,8 @@ struct ElementScratch {
   static constexpr int n_pairs = d * (d + 1) / 2;  // blocks (k, l) with k ≤ l
   Eigen::MatrixXd B;  // n × dQ: column block q is B_q = ∇N_q W_q⁻¹
   Eigen::MatrixXd P;  // d × dQ: column block q is w_q dμ/dT(T_q)
+  Eigen::MatrixXd G;  // d × dQ on tensor grids: column block q is X ∇N_q
+  Eigen::MatrixXd R;  // d × dQ on tensor grids: column block q is w_q dμ/dT(T_q) W_q⁻ᵀ = ∂(w_q μ)/∂G_q
   Eigen::MatrixXd C;  // n × (n_pairs·dQ): block (pair, q) is B_q · w_q H_q^{kl}
   Eigen::MatrixXd g;  // d × n: ∂E/∂X
   Eigen::MatrixXd H;  // dn × dn, component-major local order k·n + a
@@ -48,7 +51,9 @@ void complete_symmetric(Matrix& H, int n) {
 ///
 /// The Hessian uses H_e^{kl} = Σ_q B_q H_q^{kl} B_qᵀ, with H_q^{kl}(j, m) = d²μ/dT_kj dT_lm:
 /// stacking the Q points side by side turns the sum into one n × dQ × n product per pair
-/// (k ≤ l); the blocks k > l are transposes.
+/// (k ≤ l); the blocks k > l are transposes. Where the table's points are a tensor grid
+/// (ShapeTable::tensor), T_q = (X ∇N_q) W_q⁻¹ and the gradient Σ_q R_q ∇N_qᵀ are taken by sum
+/// factorization instead (a P3 hexahedron: 7× fewer operations).
 template <int d>
 double element_kernel(const Metric<d>& metric, const ShapeTable& table, const QuadratureTarget<d>* targets,
                       const NodalMatrix<d>& X, Want want, HessianMode mode, ElementScratch<d>& s) {
@@ -56,23 +61,32 @@ double element_kernel(const Metric<d>& metric, const ShapeTable& table, const Qu
   const int Q = table.n_points();
   const bool grad = want != Want::Value;
   const bool hess = want == Want::Hessian;
-  if (grad) {
-    s.B.resize(n, d * Q);
+  const TensorGrid* grid = table.tensor && table.dim == d ? table.tensor.get() : nullptr;
+  if (grid) {
+    s.G.resize(d, d * Q);
+    grid_gradients(*grid, X.data(), d, s.G.data());
+    if (grad) s.R.resize(d, d * Q);
+  } else if (grad) {
     s.P.resize(d, d * Q);
   }
+  if (hess || (grad && !grid)) s.B.resize(n, d * Q);
   if (hess) s.C.resize(n, ElementScratch<d>::n_pairs * d * Q);
   double value = 0.0;
   Eigen::Matrix<double, Eigen::Dynamic, d, Eigen::ColMajor, k_max_nodes, d> Bq(n, d);
   for (int q = 0; q < Q; ++q) {
     const QuadratureTarget<d>& t = targets[q];
-    Bq.noalias() = table.dN.middleCols(q * d, d).lazyProduct(t.W_inv);  // coefficient-wise: no GEMM packing for n × d · d × d
-    const MatT<d> T = X.lazyProduct(Bq);
+    // coefficient-wise products: no GEMM packing for n × d · d × d
+    if (!grid || hess) Bq.noalias() = table.dN.middleCols(q * d, d).lazyProduct(t.W_inv);
+    const MatT<d> T = grid ? MatT<d>(Eigen::Map<const MatT<d>>(s.G.data() + d * d * q).lazyProduct(t.W_inv)) : MatT<d>(X.lazyProduct(Bq));
     const MetricEval<d> ev = metric.eval(T, want);
     if (!(ev.mu < std::numeric_limits<double>::infinity())) return std::numeric_limits<double>::infinity();
     value += t.weight * ev.mu;
     if (!grad) continue;
-    s.B.middleCols(q * d, d) = Bq;
-    s.P.middleCols(q * d, d) = t.weight * ev.dmu_dT;
+    if (grid)
+      s.R.middleCols(q * d, d).noalias() = (t.weight * ev.dmu_dT).lazyProduct(t.W_inv.transpose());
+    else
+      s.P.middleCols(q * d, d) = t.weight * ev.dmu_dT;
+    if (!grid || hess) s.B.middleCols(q * d, d) = Bq;
     if (!hess) continue;
     HessT<d> Hq = ev.d2mu_dT2;
     if (mode == HessianMode::Projected) project_isotropic<d>(T, Hq);
@@ -86,7 +100,12 @@ double element_kernel(const Metric<d>& metric, const ShapeTable& table, const Qu
         s.C.middleCols((pair * Q + q) * d, d).noalias() = Bq.lazyProduct(Hkl);
       }
   }
-  if (grad) s.g.noalias() = s.P * s.B.transpose();
+  if (grad && grid) {
+    s.g.resize(d, n);
+    grid_gradients_transpose(*grid, s.R.data(), d, s.g.data());
+  } else if (grad) {
+    s.g.noalias() = s.P * s.B.transpose();
+  }
   if (hess) {
     s.H.resize(d * n, d * n);
     int pair = 0;
