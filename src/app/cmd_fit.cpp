@@ -47,8 +47,8 @@ FitSettings read_options(const CaseFile& c, int threads) {
   OptionReader r(c.options, c.file.string());
   r.read("metric", o.metric, {"mu2", "mu303", "mu77", "mu80"});
   std::string target = "ideal", weights = "adaptive";
-  r.read("target", target, {"ideal", "input"});
-  o.target = target == "input" ? TargetKind::Input : TargetKind::Ideal;
+  r.read("target", target, {"ideal", "input", "ideal_unit"});
+  o.target = target_kind(target);
   r.read("weight0", o.weight0, 0.0, 1e30);
   r.read("penalty0", o.penalty0, 1e-12, 1e12);
   r.read("weights", weights, {"adaptive", "constant"});

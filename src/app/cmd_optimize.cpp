@@ -51,7 +51,7 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   r.read("quadrature", quadrature, {"lobatto", "gauss"});
   r.read("quadrature_degree", o.quadrature_degree, 0, 30);
   o.quadrature = quadrature == "gauss" ? QuadratureFamily::Gauss : QuadratureFamily::Lobatto;
-  r.read("target", target, {"ideal", "input"});
+  r.read("target", target, {"ideal", "input", "ideal_unit"});
   r.read("boundary", s.boundary, {"fixed", "slide", "slide-planes"});
   r.read("feature_angle", s.feature_angle, 0.0, 180.0);
   r.read("max_newton", o.max_newton, 1, 100000);
@@ -64,7 +64,7 @@ OptimizeSettings read_settings(const nlohmann::json& json, const std::string& fi
   if (!a.target.empty()) target = a.target;
   if (!a.boundary.empty()) s.boundary = a.boundary;
   if (!a.solver.empty()) solver = a.solver;
-  o.target = target == "input" ? TargetKind::Input : TargetKind::Ideal;
+  o.target = target_kind(target);
   o.solver = solver == "cholesky"      ? OptimizeSolver::Cholesky
              : solver == "iterative"   ? OptimizeSolver::Iterative
              : solver == "matrix-free" ? OptimizeSolver::MatrixFree
@@ -279,7 +279,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
 
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();
   extra["metric"] = options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric;
-  extra["target"] = options.target == TargetKind::Input ? "input" : "ideal";
+  extra["target"] = target_name(options.target);
   extra["boundary"] = settings.boundary;
   int degree = r.quadrature_degree;
   if (degree == 0)
@@ -325,7 +325,8 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
   cmd->add_option("--metric", args->metric, "mu2 (2D) | mu303 (3D) | mu77 | mu80 | distortion | distortion2")
       ->check(CLI::IsMember({"mu2", "mu303", "mu77", "mu80", "distortion", "distortion2"}));
-  cmd->add_option("--target", args->target, "ideal (default) | input")->check(CLI::IsMember({"ideal", "input"}));
+  cmd->add_option("--target", args->target, "ideal (default) | input | ideal_unit (MFEM's -tid 1)")
+      ->check(CLI::IsMember({"ideal", "input", "ideal_unit"}));
   cmd->add_option("--boundary", args->boundary,
                   "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
       ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));

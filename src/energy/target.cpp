@@ -2,6 +2,7 @@
 #include "meshmorph/energy/target.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/LU>
@@ -29,6 +30,14 @@ MatT<d> ideal_jacobian(ElementType type, double volume) {
   const MatT<d> W0 = ideal_jacobian(type);
   const double ref_measure = is_simplex(type) ? (d == 2 ? 0.5 : 1.0 / 6.0) : (d == 2 ? 4.0 : 8.0);
   return std::pow(volume / (ref_measure * W0.determinant()), 1.0 / d) * W0;
+}
+
+// Volume of the unit-size ideal cell: the regular simplex of unit edge (W₀ of quality/ maps
+// the reference simplex onto it), the unit square or cube.
+template <int d>
+double unit_volume(ElementType type) {
+  if (!is_simplex(type)) return 1.0;
+  return (d == 2 ? 0.5 : 1.0 / 6.0) * ideal_jacobian(type).determinant();
 }
 
 template <int d>
@@ -100,7 +109,9 @@ TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, T
     const int Q = bt.n_points();
     const ShapeTable& table = *bt.table;
     for (std::size_t c = 0; c < volumes[bi].size(); ++c) {
-      const double v = volumes[bi][c] > 0.0 ? volumes[bi][c] : mean_volume;
+      const double v = kind == TargetKind::IdealUnit ? unit_volume<d>(mesh.cells[bi].type)
+                       : volumes[bi][c] > 0.0  ? volumes[bi][c]
+                                               : mean_volume;
       const MatT<d> W = ideal_jacobian<d>(mesh.cells[bi].type, v);
       const MatT<d> W_inv = W.inverse();
       const double det = W.determinant();
@@ -110,6 +121,21 @@ TargetField<d> build_targets(const Mesh& mesh, const Eigen::MatrixXd& x_input, T
     }
   }
   return field;
+}
+
+const char* target_name(TargetKind kind) {
+  switch (kind) {
+    case TargetKind::Input: return "input";
+    case TargetKind::Ideal: return "ideal";
+    case TargetKind::IdealUnit: return "ideal_unit";
+  }
+  return "?";
+}
+
+TargetKind target_kind(const std::string& name) {
+  for (TargetKind k : {TargetKind::Input, TargetKind::Ideal, TargetKind::IdealUnit})
+    if (name == target_name(k)) return k;
+  throw std::invalid_argument("unknown target \"" + name + "\"");
 }
 
 template MatT<2> ideal_jacobian<2>(ElementType, double);

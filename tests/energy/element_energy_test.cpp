@@ -161,6 +161,40 @@ TEST(IdealJacobian, HasTheRequestedVolumeAndShape) {
   EXPECT_TRUE(Whex.isApprox(MatT<3>::Identity(), 1e-14));  // [−1,1]³ has volume 8
 }
 
+// MFEM's -tid 1: every cell's weights sum to the volume of the unit-edge regular simplex or
+// of the unit square/cube, whatever the cell's size, where the ideal target's sum to the
+// cell's own volume; both share the ideal shape.
+TEST(BuildTargets, IdealUnitWeighsEveryCellAsTheUnitCell) {
+  for (const ElementCase c : test::all_cell_cases()) {
+    SCOPED_TRACE(test::case_name(c));
+    const int dim = topological_dim(c.type);
+    const Eigen::MatrixXd X = 3.0 * test::random_element(c.type, c.order, 5u);  // a cell of about 3^dim the unit's volume
+    const Mesh mesh = test::one_cell_mesh(c.type, c.order, X);
+    const auto sums = [&](TargetKind kind) {
+      double sum = 0.0;
+      Eigen::MatrixXd W_inv;
+      if (dim == 2) {
+        const TargetField<2> t = build_targets<2>(mesh, mesh.x, kind);
+        for (const auto& q : t.blocks[0].points) sum += q.weight;
+        W_inv = t.blocks[0].points[0].W_inv;
+      } else {
+        const TargetField<3> t = build_targets<3>(mesh, mesh.x, kind);
+        for (const auto& q : t.blocks[0].points) sum += q.weight;
+        W_inv = t.blocks[0].points[0].W_inv;
+      }
+      return std::make_pair(sum, W_inv);
+    };
+    const auto [unit, W_unit] = sums(TargetKind::IdealUnit);
+    const auto [own, W_own] = sums(TargetKind::Ideal);
+    const double expected = is_simplex(c.type) ? (dim == 2 ? std::sqrt(3.0) / 4.0 : 1.0 / (6.0 * std::sqrt(2.0))) : 1.0;
+    EXPECT_NEAR(unit, expected, 1e-12);
+    EXPECT_GT(own, 2.0 * expected);
+    EXPECT_NEAR((W_unit - std::pow(own / unit, 1.0 / dim) * W_own).norm(), 0.0, 1e-12 * W_unit.norm());  // same shape
+  }
+  EXPECT_EQ(target_kind(target_name(TargetKind::IdealUnit)), TargetKind::IdealUnit);
+  EXPECT_THROW(target_kind("unit"), std::invalid_argument);
+}
+
 TEST(BuildTargets, InvertedInputElementIsAnInputError) {
   Eigen::MatrixXd X(2, 3);
   X << 0, 0, 1, 0, 1, 0;  // clockwise triangle

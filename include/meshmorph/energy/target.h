@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <string>
 #include <cstddef>
 #include <vector>
 
@@ -20,7 +21,16 @@ enum class TargetKind {
   /// equivalent): elements are driven to ideal shape at their current size. W is constant
   /// over an element.
   Ideal,
+  /// W = the regular simplex of unit edge / the unit square or cube, for every element
+  /// (MFEM's -tid 1, "ideal shape, unit size"): each element weighs the same in the energy,
+  /// whatever its size, as in MFEM's mesh-optimizer. Shape metrics see only the weights change.
+  IdealUnit,
 };
+
+/// The case-file / CLI name of a target kind ("input", "ideal", "ideal_unit"), and back
+/// (throws std::invalid_argument on other names).
+const char* target_name(TargetKind kind);
+TargetKind target_kind(const std::string& name);
 
 /// The target data of one quadrature point: W⁻¹ and the integration weight w_q·|det W|.
 template <int d>
