@@ -71,10 +71,6 @@ double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X, const std::v
   return m;
 }
 
-// validity_samples of a quadrilateral or hexahedron as tensor grids of 1D point sets (the
-// rule's, the lattice's, the nodes' where the lattice misses them): grid_gradients gives their
-// Jacobians by sum factorization (a P3 hexahedron: 8× fewer operations than sample by sample).
-// Empty where the samples are not such grids.
 // Sorted distinct coordinates of row 0 of `points`, if the columns are exactly their tensor
 // grid (in any order); empty otherwise.
 std::vector<double> grid_coordinates(const Eigen::MatrixXd& points) {
@@ -94,6 +90,10 @@ std::vector<double> grid_coordinates(const Eigen::MatrixXd& points) {
   return xs;
 }
 
+// validity_samples of a quadrilateral or hexahedron as tensor grids of 1D point sets (the
+// rule's, the lattice's, the nodes' where the lattice misses them): grid_gradients gives their
+// Jacobians by sum factorization (a P3 hexahedron: 8× fewer operations than sample by sample).
+// Empty where the samples are not such grids.
 std::vector<TensorGrid> grid_samples(ElementType type, int order) {
   const TensorBasis& basis = tensor_basis(type, order);
   if (basis.P == 0) return {};

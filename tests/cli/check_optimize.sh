@@ -43,6 +43,12 @@ less "$(field "$r" energy_final)" "$(field "$r" energy_initial)" || fail "bare: 
 less 0 "$(field "$r" min_det_final)" || fail "bare: min det J"
 [ -n "$(field "$r" mu_max)" ] && [ -n "$(field "$r" mu_mean)" ] || fail "bare: no mu statistics"
 "$mm" --quiet quality "$work/bare_optimized.msh" > /dev/null || fail "bare: output invalid or unreadable"
+# MFEM's unit-size target: every cell weighs the same, so F starts elsewhere and still drops.
+expect "$work/bare.msh" 0 "" --target ideal_unit -o "$work/bare_unit.msh" --report "$work/bare_unit.json"
+r=$work/bare_unit.json
+[ "$(field "$r" target)" = ideal_unit ] && [ "$(field "$r" converged)" = true ] || fail "bare_unit: target or convergence"
+less "$(field "$r" energy_final)" "$(field "$r" energy_initial)" || fail "bare_unit: the energy did not drop"
+[ "$(field "$r" energy_initial)" != "$(field "$work/bare.json" energy_initial)" ] || fail "bare_unit: the same F as ideal"
 
 # The sphere sliding (a `project` level set) against the sphere fixed; the box fixed in both.
 sphere='{"sphere": {"center": [0, 0, 0], "radius": 0.4}}'
