@@ -62,18 +62,10 @@ int threads_of(int requested) { return requested > 0 ? requested : omp_get_max_t
 constexpr int k_batch = 16;
 
 // The 1D factors of a hexahedral block whose table is a tensor grid (ShapeTable::tensor);
-// P = 0 (dense products) elsewhere.
+// null (dense products) elsewhere.
 template <int d>
-typename HessianAction<d>::Tensor tensor_factors(const CellBlock& block, const ShapeTable& table) {
-  typename HessianAction<d>::Tensor t;
-  if (d != 3 || block.type != ElementType::Hexahedron || !table.tensor) return t;
-  const TensorGrid& g = *table.tensor;
-  t.P = g.basis->P;
-  t.m = g.m;
-  t.B = g.B;
-  t.D = g.D;
-  t.node = g.basis->node;
-  return t;
+const TensorGrid* tensor_factors(const CellBlock& block, const ShapeTable& table) {
+  return d == 3 && block.type == ElementType::Hexahedron ? table.tensor.get() : nullptr;
 }
 
 constexpr int k_lanes = HessianAction<3>::k_lanes;
@@ -106,8 +98,8 @@ using FloatLanes = float __attribute__((vector_size(k_lanes * sizeof(float)), al
 // lane; K: point, packed entry, lane (HessianAction::K).
 // P_ and m_ > 0 fix P and m at compile time (the loops unroll), 0 reads them from t.
 template <int P_, int m_>
-[[gnu::always_inline]] inline void hex_action(const HessianAction<3>::Tensor& t, const float* K, HexScratch& s) {
-  const int P = P_ > 0 ? P_ : t.P, m = m_ > 0 ? m_ : t.m;
+[[gnu::always_inline]] inline void hex_action(const TensorGrid& t, const float* K, HexScratch& s) {
+  const int P = P_ > 0 ? P_ : t.basis->P, m = m_ > 0 ? m_ : t.m;
   const auto B = [&](int q, int i) { return t.B(q, i); };
   const auto D = [&](int q, int i) { return t.D(q, i); };
   // n values of 3 components; zeroed only where a pass scatters into them (E), the others are
@@ -216,11 +208,12 @@ template <int P_, int m_>
 #else
 #define MESHMORPH_VECTOR_CLONES
 #endif
-MESHMORPH_VECTOR_CLONES void hex_kernel(const HessianAction<3>::Tensor& t, const float* K, HexScratch& s) {
-  if (t.P == 2 && t.m == 3) return hex_action<2, 3>(t, K, s);
-  if (t.P == 3 && t.m == 4) return hex_action<3, 4>(t, K, s);
-  if (t.P == 4 && t.m == 5) return hex_action<4, 5>(t, K, s);
-  if (t.P == 5 && t.m == 6) return hex_action<5, 6>(t, K, s);
+MESHMORPH_VECTOR_CLONES void hex_kernel(const TensorGrid& t, const float* K, HexScratch& s) {
+  const int P = t.basis->P;
+  if (P == 2 && t.m == 3) return hex_action<2, 3>(t, K, s);
+  if (P == 3 && t.m == 4) return hex_action<3, 4>(t, K, s);
+  if (P == 4 && t.m == 5) return hex_action<4, 5>(t, K, s);
+  if (P == 5 && t.m == 6) return hex_action<5, 6>(t, K, s);
   hex_action<0, 0>(t, K, s);
 }
 
@@ -271,7 +264,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     }
     E.clear();
     // Cells in batches of k_lanes, interleaved, where hex_action takes them (HessianAction::K).
-    const bool lanes = out.tensor[bi].P > 0;
+    const bool lanes = out.tensor[bi] != nullptr;
     const std::size_t padded = lanes ? (block.n_cells() + k_lanes - 1) / k_lanes * k_lanes : block.n_cells();
     K.assign(padded * static_cast<std::size_t>(Q) * k_packed(dd), 0.0f);
     const TensorGrid* grid = table.tensor && table.dim == d ? table.tensor.get() : nullptr;
@@ -363,7 +356,8 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
       double* out = local.data() + d * blocks_[bi].first_slot;
       const auto y_of = [&](std::size_t c, int a, int k) -> double& { return out[(c * n + static_cast<std::size_t>(a)) * d + k]; };
       if constexpr (d == 3) {
-        if (const auto& t = action.tensor[bi]; t.P > 0) {
+        if (const TensorGrid* t = action.tensor[bi]) {
+          const std::vector<std::int32_t>& lattice_node = t->basis->node;
           const std::ptrdiff_t n_batches = (n_cells + k_lanes - 1) / k_lanes;
 #pragma omp for schedule(static) nowait
           for (std::ptrdiff_t batch = 0; batch < n_batches; ++batch) {
@@ -373,15 +367,15 @@ void EnergyAssembler<d>::apply_hessian(const HessianAction<d>& action, const Eig
               const std::int32_t* nodes = block.cell(static_cast<std::size_t>(batch * k_lanes + e));
               for (int l = 0; l < n; ++l)
                 for (int k = 0; k < 3; ++k)
-                  if (const std::int32_t r = red[3 * nodes[t.node[static_cast<std::size_t>(l)]] + k]; r >= 0)
+                  if (const std::int32_t r = red[3 * nodes[lattice_node[static_cast<std::size_t>(l)]] + k]; r >= 0)
                     hex.u[static_cast<std::size_t>((3 * l + k) * k_lanes + e)] = v[r];
             }
-            hex_kernel(t, K + static_cast<std::size_t>(batch) * Q * k_packed(dd) * k_lanes, hex);
+            hex_kernel(*t, K + static_cast<std::size_t>(batch) * Q * k_packed(dd) * k_lanes, hex);
             for (int e = 0; e < lanes; ++e) {
               const auto c = static_cast<std::size_t>(batch * k_lanes + e);
               for (int l = 0; l < n; ++l)
                 for (int k = 0; k < 3; ++k)
-                  y_of(c, t.node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>((3 * l + k) * k_lanes + e)];
+                  y_of(c, lattice_node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>((3 * l + k) * k_lanes + e)];
             }
           }
           continue;
@@ -473,12 +467,12 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
     const float* K = action.K[bi].data();
     const std::vector<float>& E = action.element[bi];
     double* out = local.data() + pairs * blocks_[bi].first_slot;
-    const auto& t = action.tensor[bi];
+    const TensorGrid* t = action.tensor[bi];
     // Sum factorization on hexahedra: ∂_j N_a ∂_m N_a at point q is a product of 1D tables,
     // l_i l_i, l_i l_i' or l_i' l_i' in each direction, so each field is contracted in three
     // 1D passes (O(m³P + m²P² + mP³) instead of O(m³P³)).
     std::array<Eigen::MatrixXd, 3> table1d;  // l l, l l', l' l' (m × P)
-    if (t.P > 0) table1d = {t.B.cwiseProduct(t.B), t.B.cwiseProduct(t.D), t.D.cwiseProduct(t.D)};
+    if (t) table1d = {t->B.cwiseProduct(t->B), t->B.cwiseProduct(t->D), t->D.cwiseProduct(t->D)};
     std::vector<double> S, A, C;
     Eigen::Matrix<double, pairs, Eigen::Dynamic> h;
 #pragma omp for schedule(static) nowait
@@ -493,11 +487,11 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
             for (int l = k; l < d; ++l, ++o) y[pairs * a + o] = Ec[packed_index(dn, k * n + a, l * n + a)];
         continue;
       }
-      const auto Kq = [&](int q) { return point_entries<d>(K, t.P > 0, c, Q, q); };
+      const auto Kq = [&](int q) { return point_entries<d>(K, t != nullptr, c, Q, q); };
       h.setZero(pairs, n);
-      if (t.P > 0) {
+      if (t) {
         if constexpr (d == 3) {
-          const int P = t.P, m = t.m;
+          const int P = t->basis->P, m = t->m;
           S.resize(static_cast<std::size_t>(pairs * Q));
           A.resize(static_cast<std::size_t>(pairs * m * m * P));
           C.resize(static_cast<std::size_t>(pairs * m * P * P));
@@ -528,7 +522,7 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(const HessianAction<d>& a
               for (int iz = 0; iz < P; ++iz)
                 for (int iy = 0; iy < P; ++iy)
                   for (int ix = 0; ix < P; ++ix) {
-                    const int a = t.node[static_cast<std::size_t>(ix + P * (iy + P * iz))];
+                    const int a = t->basis->node[static_cast<std::size_t>(ix + P * (iy + P * iz))];
                     for (int qx = 0; qx < m; ++qx) {
                       const double xv = X(qx, ix);
                       for (int o = 0; o < pairs; ++o) h(o, a) += xv * C[static_cast<std::size_t>(pairs * (qx + m * (iy + P * iz)) + o)];

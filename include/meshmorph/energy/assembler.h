@@ -45,7 +45,7 @@ struct HessianAction {
   /// Cells per batch of the sum-factorized product (one SIMD lane each).
   static constexpr int k_lanes = 4;
   /// Per cell block: n_cells × n_points × d²(d² + 1)/2; where the block is sum-factorized
-  /// (tensor P > 0) its cells in batches of k_lanes, interleaved (batch × point × entry ×
+  /// (tensor non-null) its cells in batches of k_lanes, interleaved (batch × point × entry ×
   /// lane), the last batch padded with zeros. In single precision, as `element`: reading them
   /// bounds the product, and the action is then H's to ~1e-7 relative, which the inexact
   /// Newton steps of newton_matrix_free absorb (value and gradient stay in double).
@@ -53,15 +53,10 @@ struct HessianAction {
   /// Per cell block of simplices instead of K: the element Hessians (component-major local
   /// order k·n + a), packed as K_q, n_cells × d·n(d·n + 1)/2: fewer numbers and flops than K.
   std::vector<std::vector<float>> element;
-  /// Per cell block: the 1D factors of a hexahedral block's basis at its tensor-product points
-  /// (sum factorization); P = 0 where the block takes dense products (other cells, or a basis
-  /// or rule that does not factor).
-  struct Tensor {
-    int P = 0, m = 0;                 ///< 1D nodes, 1D points
-    Eigen::MatrixXd B, D;             ///< m × P: l_i(x_q), l_i'(x_q)
-    std::vector<std::int32_t> node;   ///< local node of lattice index i + P(j + P k)
-  };
-  std::vector<Tensor> tensor;
+  /// Per cell block: the 1D factors of a hexahedral block's table (ShapeTable::tensor) where
+  /// its products go by sum factorization; null where the block takes dense products (other
+  /// cells, or a rule that is not a tensor grid).
+  std::vector<const TensorGrid*> tensor;
   /// apply_hessian's and hessian_diagonal's per-cell results before they are gathered by node
   /// (scratch, reused between calls: one product at a time per action).
   mutable std::vector<double> local;
