@@ -41,6 +41,13 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
   for (std::size_t k = 0; k < slides_.size(); ++k) slide_of_row_[static_cast<std::size_t>(slides_[k].first)] = static_cast<std::int32_t>(k);
   MESHMORPH_CHECK(project_slides(x_), "FitProblem: a slide node cannot be projected onto its surface");
   assembler_ = std::make_unique<EnergyAssembler<d>>(mesh, topology, targets_, dofs_, !matrix_free);
+  // Not with sliding nodes: with the coarse level the P2 sphere sliding on its own facets
+  // (OptimizeSlide) stalled at |∇F| = 1.2e-8 |∇F₀|, its line search finding no step, where
+  // block Jacobi alone converges.
+  if (matrix_free && slides_.empty()) {
+    coarse_ = std::make_unique<CoarseSpace<d>>(mesh, dofs_, targets_);
+    if (coarse_->size() == 0) coarse_.reset();
+  }
   metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
   if (options.flat_edges) {
     std::vector<std::uint8_t> fitted(mesh.n_nodes(), 0);
@@ -424,6 +431,14 @@ HessianBlocks FitProblem<d>::hessian_blocks() {
   }
   b.first.push_back(static_cast<std::int32_t>(dofs_.n_free()));
   return b;
+}
+
+template <int d>
+bool FitProblem<d>::coarse_hessian(CoarseHessian& out) {
+  if (!coarse_) return false;
+  out.R = &coarse_->R();
+  out.A = assembler_->coarse_hessian(action_, *coarse_, options_.threads);
+  return true;
 }
 
 template <int d>

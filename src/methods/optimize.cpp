@@ -78,7 +78,9 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
     NewtonStats s;
     if (kind == OptimizeSolver::MatrixFree) {
       result.solver = "matrix-free";
-      s = newton_matrix_free(P, no);
+      KrylovNewtonOptions ko;
+      ko.threads = fo.threads;
+      s = newton_matrix_free(P, no, ko);
       result.linear = s.krylov_iterations;
     } else {
       LinearSolverOptions lo;

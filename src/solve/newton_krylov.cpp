@@ -2,12 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
 
 #include "meshmorph/error.h"
 #include "meshmorph/log.h"
+#include "meshmorph/solve/linear_solver.h"
 #include "meshmorph/solve/newton.h"
 #include "solve/detail/line_search.h"
 
@@ -61,9 +63,33 @@ class BlockJacobi {
   HessianBlocks b_;
 };
 
-// Block-Jacobi-preconditioned CG on H p = b from p = 0, truncated at nonpositive curvature
+// Block Jacobi plus, where set, the coarse correction R A⁻¹ Rᵀ (additive two-level; SPD when
+// A is).
+class TwoLevel {
+ public:
+  explicit TwoLevel(HessianBlocks blocks) : fine_(std::move(blocks)) {}
+  void set_coarse(const Eigen::SparseMatrix<double>* R, LinearSolver* solver) {
+    R_ = R;
+    coarse_ = solver;
+  }
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+    fine_.apply(r, z);
+    if (!coarse_) return;
+    rc_.noalias() = R_->transpose() * r;
+    coarse_->solve(rc_, xc_);
+    z.noalias() += *R_ * xc_;
+  }
+
+ private:
+  BlockJacobi fine_;
+  const Eigen::SparseMatrix<double>* R_ = nullptr;
+  LinearSolver* coarse_ = nullptr;
+  mutable Eigen::VectorXd rc_, xc_;
+};
+
+// Preconditioned CG on H p = b from p = 0, truncated at nonpositive curvature
 // (Steihaug): p is then the last iterate, a descent direction for −b, or none (iterations 0).
-CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const BlockJacobi& preconditioner, const Eigen::VectorXd& b,
+CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const TwoLevel& preconditioner, const Eigen::VectorXd& b,
                       double rtol, int max_iterations, Eigen::VectorXd& p) {
   CgResult result;
   p.setZero(b.size());
@@ -102,6 +128,23 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
   NewtonStats stats;
   Assembly a;
   Eigen::VectorXd p;
+  CoarseHessian coarse;
+  std::unique_ptr<LinearSolver> coarse_solver;  // its symbolic analysis kept between steps
+  // The preconditioner of the last evaluate_action()'s Hessian.
+  const auto preconditioner = [&] {
+    TwoLevel M(problem.hessian_blocks());
+    if (krylov.two_level && problem.coarse_hessian(coarse) && coarse.A.rows() > 0) {
+      if (!coarse_solver) {
+        LinearSolverOptions lo;
+        lo.kind = LinearSolverKind::Cholesky;
+        lo.threads = krylov.threads;
+        coarse_solver = make_linear_solver(lo, static_cast<std::size_t>(coarse.A.rows()));
+      }
+      // An indefinite A (the exact Hessian away from a minimiser): block Jacobi alone.
+      if (coarse_solver->factorize(coarse.A)) M.set_coarse(coarse.R, coarse_solver.get());
+    }
+    return M;
+  };
   bool exact_ready = false;
   double forcing = krylov.max_forcing, previous_norm = 0.0;
   for (;;) {
@@ -116,7 +159,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       forcing = std::clamp(next, krylov.min_forcing, krylov.max_forcing);
     }
     previous_norm = norm;
-    CgResult cg = truncated_cg(problem, BlockJacobi(problem.hessian_blocks()), -a.gradient, forcing, krylov.max_iterations, p);
+    CgResult cg = truncated_cg(problem, preconditioner(), -a.gradient, forcing, krylov.max_iterations, p);
     ++stats.linear_solves;
     stats.krylov_iterations += cg.iterations;
     if (exact && cg.curvature) {
@@ -126,7 +169,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       log_detail("newton: the exact Hessian is not positive definite on the Krylov space; projected steps");
       exact = exact_ready = false;
       problem.evaluate_action(HessianMode::Projected, a);
-      cg = truncated_cg(problem, BlockJacobi(problem.hessian_blocks()), -a.gradient, forcing, krylov.max_iterations, p);
+      cg = truncated_cg(problem, preconditioner(), -a.gradient, forcing, krylov.max_iterations, p);
       ++stats.linear_solves;
       stats.krylov_iterations += cg.iterations;
     }

@@ -3,6 +3,7 @@
 // against the assembled one.
 #include <cstring>
 #include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,22 @@ void action_matches_assembly(ElementType type, int order, bool fix_boundary,
           if (r >= 0 && c >= 0) block_error = std::max(block_error, std::abs(blocks[i * d * d + k + d * l] - a.hessian.coeff(r, c)));
         }
     EXPECT_LE(block_error, 1e-6 * diagonal.cwiseAbs().maxCoeff());
+    // The coarse matrix is the Galerkin restriction Rᵀ H R, exactly symmetric; R's hats are a
+    // partition of unity where no coarse DOF is dropped.
+    const CoarseSpace<d> coarse(mesh, dofs, targets);
+    ASSERT_GT(coarse.size(), 0);
+    const Eigen::MatrixXd Ac(assembler.coarse_hessian(action, coarse));
+    const Eigen::MatrixXd galerkin(Eigen::SparseMatrix<double>(coarse.R().transpose() * a.hessian * coarse.R()));
+    EXPECT_LE((Ac - galerkin).norm(), 1e-6 * galerkin.norm());
+    EXPECT_EQ((Ac - Ac.transpose()).norm(), 0.0);
+    if (!fix_boundary) {
+      std::set<std::int32_t> corners;
+      for (std::size_t c = 0; c < mesh.cells[0].n_cells(); ++c)
+        for (int corner = 0; corner < n_corners_of(type); ++corner) corners.insert(mesh.cells[0].cell(c)[corner]);
+      EXPECT_EQ(coarse.size(), static_cast<Eigen::Index>(d * corners.size()));
+      const Eigen::VectorXd sums = coarse.R() * Eigen::VectorXd::Ones(coarse.size());
+      EXPECT_LE((sums - Eigen::VectorXd::Ones(sums.size())).cwiseAbs().maxCoeff(), 1e-14);
+    }
     // Gathered node by node in cell order: the thread count does not change a bit.
     Eigen::VectorXd y1, y2;
     assembler.apply_hessian(action, v, y1, 1);

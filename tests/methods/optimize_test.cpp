@@ -351,6 +351,38 @@ TEST(Optimize, MatrixFreeReachesTheMinimumOfCholesky) {
   }
 }
 
+// The two-level preconditioner (block Jacobi plus the vertex hats' Galerkin matrix) against
+// block Jacobi alone: the same minimiser, in a fraction of the CG iterations (P2 hexahedra and
+// P3 tetrahedra, 4 cubes a side, interior jittered, boundary fixed).
+TEST(Optimize, TwoLevelPreconditioningCutsTheCgIterations) {
+  for (auto [type, order, jitter] : {std::tuple{ElementType::Hexahedron, 2, 0.15}, std::tuple{ElementType::Tetrahedron, 3, 0.05}}) {
+    SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+    const int n = 4;
+    const Mesh mesh = structured_mesh(type, order, n);
+    const Topology topo = build_topology(mesh);
+    const Eigen::MatrixXd x0 = jitter_interior(mesh, topo, jitter, 1.0 / (n * order), 3);
+    const std::vector<FitTerm> no_terms;
+    FitOptions o;
+    o.quadrature = QuadratureFamily::Lobatto;
+    NewtonOptions no;
+    no.decrement_tolerance = 1e-20;
+    std::array<NewtonStats, 2> stats;
+    std::array<Eigen::MatrixXd, 2> x;
+    for (int two_level = 0; two_level < 2; ++two_level) {
+      FitProblem<3> P(mesh, topo, no_terms, fixed_boundary(mesh, topo), o, x0, {}, true);
+      P.remember_current();  // the line search's reference, as optimize_mesh sets it
+      KrylovNewtonOptions ko;
+      ko.two_level = two_level == 1;
+      stats[static_cast<std::size_t>(two_level)] = newton_matrix_free(P, no, ko);
+      x[static_cast<std::size_t>(two_level)] = P.state();
+      EXPECT_TRUE(stats[static_cast<std::size_t>(two_level)].converged) << stats[static_cast<std::size_t>(two_level)].message;
+    }
+    EXPECT_LT((x[1] - x[0]).cwiseAbs().maxCoeff(), 1e-8);  // the grid: F = 0 there
+    EXPECT_LT(4 * stats[1].krylov_iterations, 3 * stats[0].krylov_iterations)  // 37 vs 57, 80 vs 151 when written
+        << stats[1].krylov_iterations << " CG iterations with the coarse level, " << stats[0].krylov_iterations << " without";
+  }
+}
+
 // Sliding on the planes of the boundary (nodes on faces and on the edges where two meet), the
 // interior jittered: the matrix-free action of the constrained Hessian (P H P plus the normal
 // stiffness) and its node blocks lead Newton to CHOLMOD's minimiser.

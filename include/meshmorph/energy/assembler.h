@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "meshmorph/energy/coarse_space.h"
 #include "meshmorph/energy/dof_map.h"
 #include "meshmorph/energy/element_energy.h"
 #include "meshmorph/energy/target.h"
@@ -113,6 +114,12 @@ class EnergyAssembler {
   std::vector<double> hessian_blocks(const HessianAction<d>& action, int threads = 0) const;
   /// The diagonal of that H over the free DOFs (of hessian_blocks()).
   Eigen::VectorXd hessian_diagonal(const HessianAction<d>& action, int threads = 0) const;
+  /// Rᵀ H R for that H and the coarse space's R (of this assembler's mesh and DofMap), formed
+  /// cell by cell without H: Σ_q (∇N^c_q ⊗ I)ᵀ K_q (∇N^c_q ⊗ I) from the hats' gradients ∇N^c
+  /// where H is held per point, R_eᵀ H_e R_e from the element matrices on simplices; full
+  /// symmetric storage, exactly symmetric.
+  Eigen::SparseMatrix<double> coarse_hessian(const HessianAction<d>& action, const CoarseSpace<d>& coarse,
+                                             int threads = 0) const;
 
   const DofMap& dofs() const { return *dofs_; }
   std::size_t n_cells() const { return n_cells_; }

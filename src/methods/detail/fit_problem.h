@@ -81,6 +81,7 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   void evaluate_action(HessianMode mode, Assembly& out) override;
   void apply_hessian(const Eigen::VectorXd& v, Eigen::VectorXd& y) override;
   HessianBlocks hessian_blocks() override;
+  bool coarse_hessian(CoarseHessian& out) override;
 
  private:
   void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
@@ -122,6 +123,9 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   std::unique_ptr<EnergyAssembler<d>> assembler_;
   std::unique_ptr<Metric<d>> metric_;
   HessianAction<d> action_;  // of the last evaluate_action()
+  // The vertex hats vanishing at fixed DOFs (matrix-free without slides only; null otherwise
+  // or where no coarse DOF is left).
+  std::unique_ptr<CoarseSpace<d>> coarse_;
   std::vector<double> node_blocks_;  // its node blocks (EnergyAssembler::hessian_blocks)
   std::vector<SlideFrame> frames_;   // of each slide node, at the last evaluate() or evaluate_action()
   Eigen::VectorXd slide_v_;          // apply_hessian's projected v
