@@ -71,42 +71,23 @@ double min_det_fixed(const ShapeTable& t, const Eigen::MatrixXd& X, const std::v
   return m;
 }
 
-// Sorted distinct coordinates of row 0 of `points`, if the columns are exactly their tensor
-// grid (in any order); empty otherwise.
-std::vector<double> grid_coordinates(const Eigen::MatrixXd& points) {
-  std::vector<double> xs(points.row(0).begin(), points.row(0).end());
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-  std::vector<std::vector<double>> cols;
-  for (Eigen::Index q = 0; q < points.cols(); ++q) {
-    cols.emplace_back(points.col(q).begin(), points.col(q).end());
-    for (double v : cols.back())
-      if (!std::binary_search(xs.begin(), xs.end(), v)) return {};
-  }
-  std::sort(cols.begin(), cols.end());
-  const bool distinct = std::adjacent_find(cols.begin(), cols.end()) == cols.end();
-  // Distinct points on the grid, as many as it has: all of it.
-  if (!distinct || std::lround(std::pow(double(xs.size()), double(points.rows()))) != points.cols()) return {};
-  return xs;
-}
-
 // validity_samples of a quadrilateral or hexahedron as tensor grids of 1D point sets (the
 // rule's, the lattice's, the nodes' where the lattice misses them): grid_gradients gives their
 // Jacobians by sum factorization (a P3 hexahedron: 8× fewer operations than sample by sample).
 // Empty where the samples are not such grids.
 std::vector<TensorGrid> grid_samples(ElementType type, int order) {
   const TensorBasis& basis = tensor_basis(type, order);
-  if (basis.P == 0) return {};
-  const std::vector<double> rule = grid_coordinates(quadrature_rule(type, metric_quadrature_degree(type, order)).points);
-  if (rule.empty()) return {};
+  // The rule's grid as its shape table found it (ShapeTable::tensor).
+  const std::shared_ptr<const TensorGrid>& rule = shape_table(type, order, metric_quadrature_degree(type, order)).tensor;
+  if (basis.P == 0 || !rule) return {};
   std::vector<double> lattice;
   for (int i = 0; i <= 2 * order; ++i) lattice.push_back(2.0 * i / (2 * order) - 1.0);
-  std::vector<std::vector<double>> sets = {rule, lattice};
+  std::vector<std::vector<double>> sets = {lattice};
   const bool nodes_on_lattice = std::all_of(basis.nodes.begin(), basis.nodes.end(), [&](double v) {
     return std::any_of(lattice.begin(), lattice.end(), [&](double l) { return std::abs(l - v) < 1e-14; });
   });
   if (!nodes_on_lattice) sets.push_back(basis.nodes);
-  std::vector<TensorGrid> grids;
+  std::vector<TensorGrid> grids = {*rule};
   for (const auto& x : sets) grids.push_back(tensor_grid(type, order, x));
   return grids;
 }
