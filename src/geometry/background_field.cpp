@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: MIT
 // A nodal field on a background mesh (paper 003 §3.1). Points are located through a
-// uniform bucket grid over the cells' bounding boxes (about one cell per bucket); inside a
-// candidate cell the reference coordinates ξ come from Newton on x(ξ) = x (exact in one
-// step for straight simplices). A point in no cell takes the cell with the nearest
-// centroid (a linear scan) and its polynomial extended beyond the cell. The Hessian
-// differences the gradient of the polynomial of the cell that holds x, evaluated beyond
-// that cell where the stencil leaves it, so that it never straddles the kinks between
-// cells (a P1 field on simplices has Hessian 0).
+// uniform bucket grid over the cells' bounding boxes (about one cell per bucket). Inside a
+// candidate cell the reference coordinates ξ come from the inverse of its affine map where
+// the cell is affine (straight simplices, parallelepipeds: every cell of a distance field),
+// else from Newton on x(ξ) = x. A point in no cell takes the cell with the nearest centroid
+// (a linear scan) and its polynomial extended beyond the cell. The Hessian is that of the
+// polynomial of the cell that holds x: exact on affine cells, A⁻ᵀ (Σ φ_a ∇²N_a) A⁻¹;
+// elsewhere central differences of its gradient, evaluated beyond the cell where the
+// stencil leaves it, so that it never straddles the kinks between cells.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Dense>
 
@@ -27,14 +29,31 @@ constexpr double kInsideTolerance = 1e-10;
 struct CellRef {
   const CellBlock* block;
   std::size_t index;
+  const LagrangeBasis* basis;
+  std::int32_t affine;  // index into BackgroundField::affine_, -1 for a curved cell
+};
+
+// x = A ξ + b over a whole cell; `inverse` = A⁻¹.
+struct AffineMap {
+  Eigen::MatrixXd inverse;
+  Vec origin;
 };
 
 class BackgroundField final : public LevelSetNode {
  public:
   BackgroundField(Mesh mesh, Eigen::VectorXd values) : mesh_(std::move(mesh)), values_(std::move(values)) {
     for (const auto& b : mesh_.cells)
-      if (topological_dim(b.type) == mesh_.dim)
-        for (std::size_t c = 0; c < b.n_cells(); ++c) cells_.push_back({&b, c});
+      if (topological_dim(b.type) == mesh_.dim) {
+        const LagrangeBasis* basis = &lagrange_basis(b.type, b.order);
+        for (std::size_t c = 0; c < b.n_cells(); ++c) {
+          CellRef cell{&b, c, basis, -1};
+          if (auto map = affine_map(cell)) {
+            cell.affine = static_cast<std::int32_t>(affine_.size());
+            affine_.push_back(std::move(*map));
+          }
+          cells_.push_back(cell);
+        }
+      }
     build_grid();
     // The difference step's length scale ℓ: the diagonal of the mesh's bounding box.
     length_scale_ = (hi_.rowwise().maxCoeff() - lo_.rowwise().minCoeff()).norm();
@@ -49,6 +68,13 @@ class BackgroundField final : public LevelSetNode {
   Eigen::MatrixXd hessian(const Vec& x) const override {
     Vec xi;
     const CellRef c = locate(x, xi);
+    if (c.affine >= 0) {
+      const Eigen::MatrixXd& Ainv = affine_[static_cast<std::size_t>(c.affine)].inverse;
+      const Eigen::Index d = mesh_.dim;
+      const Eigen::VectorXd h = c.basis->hessians(xi).transpose() * cell_values(c);  // ∂²σ/∂ξ_k∂ξ_l at k·d + l
+      const Eigen::MatrixXd H = Ainv.transpose() * h.reshaped(d, d) * Ainv;
+      return (H + H.transpose()) / 2;  // exactly symmetric
+    }
     const auto gradient = [&](const Vec& y) {
       Vec eta;
       invert(c, y, eta);
@@ -66,20 +92,43 @@ class BackgroundField final : public LevelSetNode {
     return X;
   }
 
-  // ξ with x(ξ) = x (Newton from the reference centroid), and how far ξ lies outside the
-  // reference element (0 inside).
-  double invert(const CellRef& c, const Vec& x, Vec& xi) const {
-    const LagrangeBasis& basis = lagrange_basis(c.block->type, c.block->order);
+  // The cell's map x(ξ) when it is affine: the least-squares affine fit through its nodes,
+  // kept where every node lies on it to 1e-12 of the cell's size.
+  std::optional<AffineMap> affine_map(const CellRef& c) const {
     const Eigen::MatrixXd X = coordinates(c);
-    const auto& corners = reference_element(c.block->type, 1).nodes;
-    xi = corners.rowwise().mean();
-    for (int it = 0; it < 30; ++it) {
-      const Vec r = X * basis.values(xi) - x;
-      const Eigen::MatrixXd J = X * basis.gradients(xi);
-      const Vec d = J.partialPivLu().solve(r);
-      if (!d.allFinite()) return std::numeric_limits<double>::infinity();
-      xi -= d;
-      if (d.norm() <= 1e-14 * (1 + xi.norm())) break;
+    const Eigen::MatrixXd& ref = c.basis->reference().nodes;
+    const Eigen::Index d = mesh_.dim, n = X.cols();
+    Eigen::MatrixXd R(n, d + 1);  // rows (ξ_bᵀ, 1)
+    R.leftCols(d) = ref.transpose();
+    R.col(d).setOnes();
+    const Eigen::MatrixXd Ab = R.colPivHouseholderQr().solve(X.transpose()).transpose();  // d × (d + 1): [A b]
+    const Eigen::MatrixXd A = Ab.leftCols(d);
+    const double size = (X.rowwise().maxCoeff() - X.rowwise().minCoeff()).norm();
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+    if (!(size > 0) || !(std::abs(lu.determinant()) > 1e-12 * std::pow(size, static_cast<double>(d))) ||
+        (Ab * R.transpose() - X).cwiseAbs().maxCoeff() > 1e-12 * size)
+      return std::nullopt;
+    return AffineMap{lu.inverse(), Ab.col(d)};
+  }
+
+  // ξ with x(ξ) = x (the inverse affine map, or Newton from the reference centroid), and how
+  // far ξ lies outside the reference element (0 inside).
+  double invert(const CellRef& c, const Vec& x, Vec& xi) const {
+    if (c.affine >= 0) {
+      const AffineMap& map = affine_[static_cast<std::size_t>(c.affine)];
+      xi.noalias() = map.inverse * (x - map.origin);
+    } else {
+      const Eigen::MatrixXd X = coordinates(c);
+      const auto& corners = reference_element(c.block->type, 1).nodes;
+      xi = corners.rowwise().mean();
+      for (int it = 0; it < 30; ++it) {
+        const Vec r = X * c.basis->values(xi) - x;
+        const Eigen::MatrixXd J = X * c.basis->gradients(xi);
+        const Vec d = J.partialPivLu().solve(r);
+        if (!d.allFinite()) return std::numeric_limits<double>::infinity();
+        xi -= d;
+        if (d.norm() <= 1e-14 * (1 + xi.norm())) break;
+      }
     }
     if (is_simplex(c.block->type)) return std::max({0.0, -xi.minCoeff(), xi.sum() - 1});
     return std::max(0.0, xi.cwiseAbs().maxCoeff() - 1);
@@ -95,7 +144,8 @@ class BackgroundField final : public LevelSetNode {
 
   // ∇σ = J⁻ᵀ Σ φ_a ∇_ξ N_a at reference point ξ of cell c.
   Vec cell_gradient(const CellRef& c, const Vec& xi) const {
-    const Eigen::MatrixXd G = lagrange_basis(c.block->type, c.block->order).gradients(xi);
+    const Eigen::MatrixXd G = c.basis->gradients(xi);
+    if (c.affine >= 0) return affine_[static_cast<std::size_t>(c.affine)].inverse.transpose() * (G.transpose() * cell_values(c));
     const Eigen::MatrixXd J = coordinates(c) * G;
     return J.transpose().partialPivLu().solve(G.transpose() * cell_values(c));
   }
@@ -104,7 +154,7 @@ class BackgroundField final : public LevelSetNode {
     Vec xi;
     const CellRef c = locate(x, xi);
     if (want_gradient) g = cell_gradient(c, xi);
-    return lagrange_basis(c.block->type, c.block->order).values(xi).dot(cell_values(c));
+    return c.basis->values(xi).dot(cell_values(c));
   }
 
   CellRef locate(const Vec& x, Vec& xi) const {
@@ -189,6 +239,7 @@ class BackgroundField final : public LevelSetNode {
   Mesh mesh_;
   Eigen::VectorXd values_;
   std::vector<CellRef> cells_;  // point into mesh_.cells
+  std::vector<AffineMap> affine_;
   Eigen::MatrixXd lo_, hi_, centroid_;  // d × n_cells
   Vec origin_, cell_size_;
   std::vector<std::size_t> resolution_;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/level_set_fixtures.h"
+#include "meshmorph/fem/lagrange_basis.h"
 #include "meshmorph/fem/structured.h"
 
 namespace meshmorph {
@@ -148,14 +149,59 @@ TEST(LevelSetHessian, MeshFieldsDifferentiateThePolynomialOfTheCellHoldingThePoi
   for (Eigen::Index j = 0; j < v1.size(); ++j) v1(j) = (m1.x.col(j) - vec({0.5, 0.5, 0.5})).norm() - 0.3;
   const LevelSetFunction p1(m1, v1);
   for (const auto& x : {vec({0.3, 0.4, 0.2}), vec({1.0 / 3, 0.5, 0.5})}) EXPECT_LE(p1.hessian(x).norm(), 1e-10);
-  // A cubic on Q2 quadrilaterals: within a cell, differences of the cell's gradient.
+  // A cubic on Q3 quadrilaterals: the cell's polynomial, differentiated exactly.
   Mesh q = structured_mesh(ElementType::Quadrilateral, 3, 2);
   Eigen::VectorXd vq(q.x.cols());
   for (Eigen::Index j = 0; j < vq.size(); ++j) vq(j) = std::pow(q.x(0, j), 3) - q.x(0, j) * q.x(1, j);
   const LevelSetFunction q3(q, vq);
-  const LevelSetFunction cubic = compile(ExprLevelSet{"x^3 - x*y"}, 2);
-  for (const auto& x : {vec({0.3, 0.4}), vec({0.7, 0.2})}) expect_hessian_matches_gradient(q3, x, 1e-7);
-  EXPECT_LE((q3.hessian(vec({0.3, 0.4})) - cubic.hessian(vec({0.3, 0.4}))).norm(), 1e-6);
+  for (const auto& x : {vec({0.3, 0.4}), vec({0.7, 0.2})}) {
+    expect_hessian_matches_gradient(q3, x, 1e-7);
+    Eigen::Matrix2d exact_q;
+    exact_q << 6 * x(0), -1, -1, 0;
+    EXPECT_LE((q3.hessian(x) - exact_q).norm(), 1e-11);
+  }
+  // Q2 hexahedra (the cells of a distance field): the exact Hessian of a field in the space.
+  Mesh h = structured_mesh(ElementType::Hexahedron, 2, 2);
+  Eigen::VectorXd vh(h.x.cols());
+  for (Eigen::Index j = 0; j < vh.size(); ++j) vh(j) = h.x(0, j) * h.x(1, j) * h.x(2, j) - h.x(2, j) * h.x(2, j);
+  const LevelSetFunction q2(h, vh);
+  for (const auto& x : {vec({0.3, 0.4, 0.6}), vec({0.5, 0.25, 0.9})}) {
+    Eigen::Matrix3d exact3;
+    exact3 << 0, x(2), x(1), x(2), 0, x(0), x(1), x(0), -2;
+    const Eigen::MatrixXd H = q2.hessian(x);
+    EXPECT_LE((H - exact3).norm(), 1e-12) << "x = " << x.transpose() << "\n" << H;
+    EXPECT_TRUE(H == H.transpose());
+  }
+}
+
+TEST(LevelSetHessian, CurvedBackgroundCellsDifferentiateTheirIsoparametricField) {
+  // P2 triangles bent by a smooth map: their maps are not affine, so points are located by
+  // Newton and the Hessian is differenced.
+  Mesh m = structured_mesh(ElementType::Triangle, 2, 3);
+  for (Eigen::Index j = 0; j < m.x.cols(); ++j) {
+    const double x = m.x(0, j), y = m.x(1, j);
+    m.x(0, j) = x + 0.08 * std::sin(3 * y);
+    m.x(1, j) = y + 0.06 * x * x;
+  }
+  Eigen::VectorXd values(m.x.cols());
+  for (Eigen::Index j = 0; j < values.size(); ++j) values(j) = std::cos(2 * m.x(0, j)) + m.x(1, j) * m.x(1, j);
+  const LevelSetFunction f(m, values);
+  // σ at x(ξ) is the cell's interpolant Σ φ_a N_a(ξ).
+  const CellBlock& block = m.cells.front();
+  const LagrangeBasis& basis = lagrange_basis(block.type, block.order);
+  for (std::size_t c : {std::size_t{0}, std::size_t{7}, std::size_t{13}}) {
+    const Eigen::VectorXd xi = vec({0.2, 0.3});
+    const Eigen::VectorXd N = basis.values(xi);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
+    double expected = 0;
+    for (int a = 0; a < basis.n(); ++a) {
+      const std::int32_t node = block.cell(c)[a];
+      x += N(a) * m.x.col(node);
+      expected += N(a) * values(node);
+    }
+    EXPECT_NEAR(f.value(x), expected, 1e-13) << "cell " << c;
+    expect_hessian_matches_gradient(f, x, 1e-6);
+  }
 }
 
 }  // namespace
