@@ -124,10 +124,13 @@ class FacetTree {
 
   double distance(const P3& p) const {
     double best = std::numeric_limits<double>::infinity();
-    std::vector<int> stack{0};
-    while (!stack.empty()) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
+    // Depth-first with the nearer child first: at most one pending sibling per level of a
+    // median-split tree (depth ≤ 64).
+    std::array<int, 128> stack{};
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
       if (box_distance2(n, p) >= best) continue;
       if (n.left < 0) {
         for (int f = n.begin; f < n.end; ++f) best = std::min(best, (closest(p, facets_[static_cast<std::size_t>(f)]) - p).squaredNorm());
@@ -135,8 +138,8 @@ class FacetTree {
       }
       const Node &l = nodes_[static_cast<std::size_t>(n.left)], &r = nodes_[static_cast<std::size_t>(n.left + 1)];
       const bool left_first = box_distance2(l, p) <= box_distance2(r, p);
-      stack.push_back(left_first ? n.left + 1 : n.left);
-      stack.push_back(left_first ? n.left : n.left + 1);
+      stack[static_cast<std::size_t>(top++)] = left_first ? n.left + 1 : n.left;
+      stack[static_cast<std::size_t>(top++)] = left_first ? n.left : n.left + 1;
     }
     return std::sqrt(best);
   }

@@ -4,7 +4,9 @@
 // sphere's centre, a cylinder's axis, ...) pick a fixed direction so results are
 // deterministic. The Hessian of a distance is the derivative of its unit gradient n,
 // (I − n nᵀ)·(∂(x − foot point)/∂x)/distance; there it is NaN.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <Eigen/Geometry>
@@ -61,7 +63,7 @@ class Sphere final : public LevelSetNode {
 class Cylinder final : public LevelSetNode {
  public:
   Cylinder(Vec c, Vec axis, double r) : c_(std::move(c)), a_(axis.normalized()), r_(r) {}
-  double value(const Vec& x) const override { return radial(x).norm() - r_; }
+  double value(const Vec& x) const override { return ((x - c_) - (x - c_).dot(a_) * a_).norm() - r_; }
   double value_gradient(const Vec& x, Vec& g) const override {
     const Vec v = radial(x);
     g = direction(v);
@@ -114,9 +116,15 @@ class Plane final : public LevelSetNode {
 class Box final : public LevelSetNode {
  public:
   Box(Vec c, const Vec& size) : c_(std::move(c)), h_(size / 2) {}
+  // Without the gradient's temporaries: CSG indicators evaluate boxes millions of times.
   double value(const Vec& x) const override {
-    Vec g;
-    return value_gradient(x, g);
+    double outside2 = 0.0, inside = -std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < x.size(); ++k) {
+      const double q = std::abs(x(k) - c_(k)) - h_(k);
+      if (q > 0) outside2 += q * q;
+      inside = std::max(inside, q);
+    }
+    return outside2 > 0 ? std::sqrt(outside2) : inside;
   }
   double value_gradient(const Vec& x, Vec& g) const override {
     const Vec v = x - c_;
