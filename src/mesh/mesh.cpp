@@ -24,6 +24,13 @@ int Mesh::order() const {
   return p;
 }
 
+int Mesh::max_cell_nodes() const {
+  int n = 0;
+  for (const auto& b : cells)
+    if (topological_dim(b.type) == dim) n = std::max(n, b.n_nodes_per_cell());
+  return n;
+}
+
 std::optional<PhysicalGroup> Mesh::find_group(const std::string& key) const {
   const bool numeric = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
   // A number may name groups of several dimensions: prefer facets, then cells, then lower.

@@ -148,6 +148,7 @@ BaselineResult solve_constrained(const Mesh& mesh, const BoundaryTargets& bc, co
   LinearSolverOptions lo;
   lo.kind = options.solver;
   lo.dim = d;
+  lo.cell_nodes = mesh.max_cell_nodes();
   // Slide nodes carry d − 1 unknowns, which breaks the d-per-node blocks of the iterative backend.
   lo.block_size = any_slide ? 1 : d;
   lo.threads = options.threads;

@@ -35,6 +35,7 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   lo.kind = options.solver;
   lo.block_size = d;
   lo.dim = d;
+  lo.cell_nodes = mesh.max_cell_nodes();
   lo.threads = options.threads;
   const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
   NewtonMemory memory;

@@ -34,6 +34,7 @@ class MorphImpl final : public Morpher::Impl {
     lo.kind = options.solver;
     lo.block_size = d;
     lo.dim = d;
+    lo.cell_nodes = input.max_cell_nodes();
     lo.threads = options.threads;
     solver_ = make_linear_solver(lo, problem_.n_free());
   }

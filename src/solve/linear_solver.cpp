@@ -14,7 +14,7 @@ LinearSolveStats LinearSolver::solve_previous(const Eigen::SparseMatrix<double>&
   return stats;
 }
 
-LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n) {
+LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n, int cell_nodes) {
   if (kind != LinearSolverKind::Auto) return kind;
   // Measured on projected 3D P1 tetrahedral Hessians (bench/linear_solver_bench.cpp, two
   // threads, CHOLMOD on OpenBLAS): factorize + solve takes 0.14 s at 10k unknowns, 0.54 s at
@@ -22,12 +22,20 @@ LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size
   // up to ~30k unknowns, where it costs under a second and does not depend on conditioning
   // (the penalty of an augmented Lagrangian reaches 1e9 times the mesh stiffness).
   constexpr std::size_t k_cholesky_max_3d = 30000;
+  // High-order cells couple a node with hundreds of unknowns, and the smoothed prolongator's
+  // A·P takes the pattern of A²: the AMG set-up explodes. Measured (2 threads): morph
+  // bl_sphere_p3 (115k P3-tet unknowns) 353 s with CG-AMG, 44 s and 1.6 GB with CHOLMOD;
+  // fit of the 64³ CSG mesh (250k P2-hex unknowns) over 3 min and 6.6 GB in the AMG set-up
+  // without finishing it, 8 s a step and 2.6 GB with CHOLMOD.
+  constexpr int k_dense_cell_nodes = 20;
+  constexpr std::size_t k_cholesky_max_dense_3d = 300000;
   if (dim <= 2 || n <= k_cholesky_max_3d) return LinearSolverKind::Cholesky;
+  if (cell_nodes >= k_dense_cell_nodes && n <= k_cholesky_max_dense_3d) return LinearSolverKind::Cholesky;
   return LinearSolverKind::Iterative;
 }
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, std::size_t n) {
-  switch (resolve_linear_solver(options.kind, options.dim, n)) {
+  switch (resolve_linear_solver(options.kind, options.dim, n, options.cell_nodes)) {
     case LinearSolverKind::Iterative: return std::make_unique<detail::CgAmgSolver>(options);
     case LinearSolverKind::MinresJacobi: return std::make_unique<detail::MinresJacobiSolver>(options);
     default: return std::make_unique<detail::CholmodSolver>();

@@ -82,5 +82,16 @@ TEST(Mesh, FindsGroupsByNameAndNumberAndListsTheirNodes) {
   EXPECT_EQ(index[25], -1);
 }
 
+TEST(Mesh, MaxCellNodesTakesTheDensestBlockOfTheMeshDimension) {
+  auto m = two_triangles();
+  EXPECT_EQ(m.max_cell_nodes(), 3);  // the facets' lines do not count
+  CellBlock p2{ElementType::Triangle, 2, {}, {}, {}};
+  const std::int32_t t[] = {0, 1, 2, 0, 1, 2};
+  p2.push_back(t, 7);
+  m.cells.push_back(p2);
+  EXPECT_EQ(m.max_cell_nodes(), 6);
+  EXPECT_EQ(Mesh{}.max_cell_nodes(), 0);
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -317,5 +317,20 @@ TEST(LinearSolver, AutoPicksCholeskyIn2DAndForSmall3DSystems) {
   EXPECT_EQ(make_linear_solver(o, 1'000'000)->name(), "cg-amg");
 }
 
+TEST(LinearSolver, AutoKeepsCholeskyLongerForHighOrderCells) {
+  // P1 and P2 tetrahedra (4, 10 nodes): CG-AMG past 30k unknowns.
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 40'000, 4), LinearSolverKind::Iterative);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 40'000, 10), LinearSolverKind::Iterative);
+  // P3 tetrahedra (20), P2 hexahedra (27): Cholesky up to 300k, CG-AMG beyond.
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 115'000, 20), LinearSolverKind::Cholesky);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 250'000, 27), LinearSolverKind::Cholesky);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Auto, 3, 400'000, 27), LinearSolverKind::Iterative);
+  EXPECT_EQ(resolve_linear_solver(LinearSolverKind::Iterative, 3, 50'000, 27), LinearSolverKind::Iterative);
+  LinearSolverOptions o;
+  o.dim = 3;
+  o.cell_nodes = 64;
+  EXPECT_EQ(make_linear_solver(o, 200'000)->name(), "cholmod");
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -60,6 +60,8 @@ struct Mesh {
   std::size_t n_cells() const;
   /// Highest order over the cell blocks (1 for an empty mesh).
   int order() const;
+  /// Most nodes of a cell over the blocks of the mesh's dimension (0 when there are none).
+  int max_cell_nodes() const;
 
   /// Finds a group by name, or by number when `key` is all digits; the dimension of the
   /// group is preferred in this order: dim−1, dim, lower. Empty if there is none.

@@ -26,6 +26,9 @@ struct LinearSolverOptions {
   int block_size = 1;
   /// Spatial dimension of the problem (Auto's choice depends on it).
   int dim = 2;
+  /// The most nodes of a cell of the mesh (max_cell_nodes()): how dense the Hessian's rows
+  /// are, which Auto's choice depends on too. 0: unknown (taken as linear cells).
+  int cell_nodes = 0;
   /// Default relative residual tolerance ‖b − Ax‖ ≤ rtol·‖b‖ of the iterative backend.
   double rtol = 1e-9;
   int max_iterations = 2000;
@@ -79,7 +82,9 @@ class LinearSolver {
 /// The backend for a system of `n` unknowns (Auto resolved here).
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, std::size_t n);
 
-/// Auto's choice for n unknowns in `dim` dimensions.
-LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n);
+/// Auto's choice for n unknowns in `dim` dimensions, on a mesh whose cells have at most
+/// `cell_nodes` nodes: Cholesky in 2D, up to 30k unknowns in 3D, and up to 300k for cells of
+/// 20 nodes or more (P3 tetrahedra, P2 and P3 hexahedra); CG-AMG beyond.
+LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size_t n, int cell_nodes = 0);
 
 }  // namespace meshmorph
