@@ -97,6 +97,58 @@ void residual(const SparseView& A, const double* b, const double* x, double* r, 
   }
 }
 
+bool has_block_rows(const SparseView& A, int b) {
+  if (b < 2 || A.n % b != 0) return false;
+  for (int I = 0; I < A.n / b; ++I) {
+    const int first = A.outer[I * b], width = A.outer[I * b + 1] - first;
+    if (width % b != 0) return false;
+    for (int r = 1; r < b; ++r) {
+      const int row = A.outer[I * b + r];
+      if (A.outer[I * b + r + 1] - row != width || !std::equal(A.inner + first, A.inner + first + width, A.inner + row))
+        return false;
+    }
+    for (int k = 0; k < width; k += b)
+      for (int c = 1; c < b; ++c)
+        if (A.inner[first + k + c] != A.inner[first + k] + c || A.inner[first + k] % b != 0) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// y = (b or 0) + s·A x over the node rows of a matrix with B×B block rows: the column of a
+// block comes from the node's first row, its values from each of the node's rows.
+template <int B>
+void block_rows(const SparseView& A, const double* b, const double* x, double* y, double s, int threads) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int I = 0; I < A.n / B; ++I) {
+    const int first = A.outer[I * B], width = A.outer[I * B + 1] - first;
+    const double* row[B];
+    for (int r = 0; r < B; ++r) row[r] = A.values + A.outer[I * B + r];
+    double acc[B] = {};
+    for (int k = 0; k < width; k += B) {
+      const double* xj = x + A.inner[first + k];
+      for (int r = 0; r < B; ++r)
+        for (int c = 0; c < B; ++c) acc[r] += row[r][k + c] * xj[c];
+    }
+    for (int r = 0; r < B; ++r) y[I * B + r] = (b ? b[I * B + r] : 0.0) + s * acc[r];
+  }
+}
+
+}  // namespace
+
+void spmv(const SparseView& A, int block, const double* x, double* y, int threads) {
+  if (block == 3) return block_rows<3>(A, nullptr, x, y, 1.0, threads);
+  if (block == 2) return block_rows<2>(A, nullptr, x, y, 1.0, threads);
+  spmv(A, x, y, threads);
+}
+
+void residual(const SparseView& A, int block, const double* b, const double* x, double* r, int threads) {
+  if (block == 3) return block_rows<3>(A, b, x, r, -1.0, threads);
+  if (block == 2) return block_rows<2>(A, b, x, r, -1.0, threads);
+  residual(A, b, x, r, threads);
+}
+
 Csr transpose(const Csr& A, int /*threads*/) {
   Csr T;
   T.rows = A.cols;

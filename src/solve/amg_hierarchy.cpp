@@ -73,6 +73,8 @@ bool AmgHierarchy::rebind(const SparseView& A) {
 bool AmgHierarchy::prepare_level(Level& L) {
   const int threads = std::max(1, options_.threads);
   const int n = L.A.n;
+  // Checked at every rebind too: a new matrix of the same size may have another pattern.
+  L.row_block = has_block_rows(L.A, L.block) ? L.block : 1;
   L.inv_diag.assign(static_cast<std::size_t>(n), 0.0);
   bool positive = true;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : positive)
@@ -151,7 +153,7 @@ void AmgHierarchy::smooth(Level& L, bool zero_guess) {
     std::fill(L.x.begin(), L.x.end(), 0.0);
     std::copy(L.b.begin(), L.b.end(), L.r.begin());
   } else {
-    residual(L.A, L.b.data(), L.x.data(), L.r.data(), threads);
+    residual_of(L);
   }
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < n; ++i) L.d[i] = L.inv_diag[i] * L.r[i] / theta;
@@ -159,7 +161,7 @@ void AmgHierarchy::smooth(Level& L, bool zero_guess) {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = 0; i < n; ++i) L.x[i] += L.d[i];
     if (k >= options_.smoother_degree) return;
-    residual(L.A, L.b.data(), L.x.data(), L.r.data(), threads);
+    residual_of(L);
     const double rho_new = 1.0 / (2.0 * sigma - rho);
     const double c1 = rho_new * rho, c2 = 2.0 * rho_new / delta;
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -177,13 +179,22 @@ void AmgHierarchy::cycle(std::size_t l) {
   const int threads = std::max(1, options_.threads);
   Level& C = levels_[l + 1];
   smooth(L, true);
-  residual(L.A, L.b.data(), L.x.data(), L.r.data(), threads);
+  residual_of(L);
   spmv(L.R, L.r.data(), C.b.data(), threads);
   cycle(l + 1);
   spmv(L.P, C.x.data(), L.d.data(), threads);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < L.A.n; ++i) L.x[i] += L.d[i];
   smooth(L, false);
+}
+
+void AmgHierarchy::residual_of(Level& L) const {
+  residual(L.A, L.row_block, L.b.data(), L.x.data(), L.r.data(), std::max(1, options_.threads));
+}
+
+void AmgHierarchy::apply_operator(const double* x, double* y) const {
+  const Level& L = levels_.front();
+  spmv(L.A, L.row_block, x, y, std::max(1, options_.threads));
 }
 
 void AmgHierarchy::apply(const double* r, double* z) {

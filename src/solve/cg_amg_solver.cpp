@@ -117,7 +117,7 @@ LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, d
         stats.relative_residual = r_norm / b_norm;
         return stats;
       }
-      spmv(A_, p_.data(), q_.data(), threads);
+      amg_.apply_operator(p_.data(), q_.data());
       const double pq = dot(p_.data(), q_.data(), n, threads);
       ++stats.iterations;
       if (!(pq > 0.0)) {

@@ -103,6 +103,34 @@ TEST(AmgHierarchy, VCycleContractsTheError) {
   EXPECT_LE((b - A * x).norm(), 1e-5 * b.norm());  // a rate below 0.3 per cycle
 }
 
+// The products that read a node's column indices once for all its rows: the same numbers,
+// only for matrices whose nodes couple in whole blocks.
+TEST(AmgCsr, BlockRowProductsMatchTheScalarOnes) {
+  for (int dim : {2, 3}) {
+    SCOPED_TRACE(dim);
+    Eigen::SparseMatrix<double> A = test::stiffness_matrix(dim, 6, true);
+    A.makeCompressed();
+    const detail::SparseView view = detail::view_of(A);
+    ASSERT_TRUE(detail::has_block_rows(view, dim));
+    EXPECT_FALSE(detail::has_block_rows(view, 1));
+    const Eigen::VectorXd x = test::random_vector(A.rows(), 3), b = test::random_vector(A.rows(), 4);
+    Eigen::VectorXd y(A.rows()), z(A.rows());
+    detail::spmv(view, dim, x.data(), y.data(), 2);
+    EXPECT_LE((y - A * x).norm(), 1e-14 * (A * x).norm());
+    detail::residual(view, dim, b.data(), x.data(), z.data(), 2);
+    EXPECT_LE((z - (b - A * x)).norm(), 1e-14 * (b - A * x).norm());
+    // One more entry in one row of a node: its rows no longer share a pattern.
+    Eigen::SparseMatrix<double> B = A;
+    B.coeffRef(0, B.cols() - 1) += 1.0;
+    B.makeCompressed();
+    EXPECT_FALSE(detail::has_block_rows(detail::view_of(B), dim));
+  }
+  // The block Laplacian couples only like components: its blocks are diagonal, not whole.
+  Eigen::SparseMatrix<double> L = test::stiffness_matrix(3, 6, false);
+  L.makeCompressed();
+  EXPECT_FALSE(detail::has_block_rows(detail::view_of(L), 3));
+}
+
 TEST(AmgHierarchy, NonPositiveDiagonalIsNotPositiveDefinite) {
   Eigen::SparseMatrix<double> A = test::stiffness_matrix(2, 8, false);
   A.coeffRef(5, 5) = -1.0;

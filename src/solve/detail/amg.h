@@ -37,6 +37,8 @@ class AmgHierarchy {
   bool rebind(const SparseView& A);
   /// z = M⁻¹ r, one V-cycle from a zero initial guess (z and r must not alias).
   void apply(const double* r, double* z);
+  /// y = A x with the finest operator as it is now (its values may have changed in place).
+  void apply_operator(const double* x, double* y) const;
 
   int n_levels() const { return static_cast<int>(levels_.size()); }
   int rows(int level) const { return levels_[level].A.n; }
@@ -54,9 +56,12 @@ class AmgHierarchy {
     std::vector<double> inv_diag;
     double rho = 0.0;
     int block = 1;
+    int row_block = 1;  // `block` where A has block rows (has_block_rows), else 1
     std::vector<double> x, b, r, d;
   };
-  bool prepare_level(Level& L);  // inverse diagonal (false if an entry is ≤ 0), ρ estimate, work vectors
+  // Block rows, inverse diagonal (false if an entry is ≤ 0), ρ estimate, work vectors.
+  bool prepare_level(Level& L);
+  void residual_of(Level& L) const;  // L.r = L.b − A L.x
   bool build_level(std::size_t l, std::vector<double>& weights);
   void smooth(Level& L, bool zero_guess);
   void cycle(std::size_t l);
