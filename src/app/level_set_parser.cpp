@@ -62,13 +62,21 @@ std::filesystem::path existing_file(const std::string& relative, const std::file
 LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesystem::path& base) {
   if (!j.is_object()) w.fail(std::string("expected a level-set object {\"<kind>\": ...} (kinds: ") + kKinds +
                              "), found " + json_type_phrase(j));
-  if (j.size() != 1)
+  // A CSG kind may carry "blend" beside it.
+  const bool blended = j.size() == 2 && j.contains("blend");
+  if (j.size() != 1 && !blended)
     w.fail(std::string("expected exactly one level-set kind (") + kKinds + "), found " + std::to_string(j.size()) +
            " keys");
-  const auto first = j.begin();
+  const auto first = blended && j.begin().key() == "blend" ? std::next(j.begin()) : j.begin();
   const std::string kind = first.key();
   const json& v = first.value();
   const JsonWhere at = w.key(kind);
+  double blend = 0.0;
+  if (blended) {
+    if (kind != "union" && kind != "intersection" && kind != "difference")
+      w.key("blend").fail("\"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"" + kind + "\"");
+    blend = read_positive(j.at("blend"), w.key("blend"));
+  }
   LevelSet ls;
   ls.key_path = w.path;
   if (kind == "sphere") {
@@ -108,11 +116,11 @@ LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesyste
     check_expression(expression, at);
     ls.shape = ExprLevelSet{std::move(expression)};
   } else if (kind == "union") {
-    ls.shape = UnionLevelSet{parse_operands(v, at, base, 1, SIZE_MAX)};
+    ls.shape = UnionLevelSet{parse_operands(v, at, base, 1, SIZE_MAX), blend};
   } else if (kind == "intersection") {
-    ls.shape = IntersectionLevelSet{parse_operands(v, at, base, 1, SIZE_MAX)};
+    ls.shape = IntersectionLevelSet{parse_operands(v, at, base, 1, SIZE_MAX), blend};
   } else if (kind == "difference") {
-    ls.shape = DifferenceLevelSet{parse_operands(v, at, base, 2, 2)};
+    ls.shape = DifferenceLevelSet{parse_operands(v, at, base, 2, 2), blend};
   } else if (kind == "mesh") {
     ObjectReader r(v, at);
     MeshLevelSet m;

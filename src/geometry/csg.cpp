@@ -4,7 +4,8 @@
 // a face, two on an edge, three at a 3D corner), where it is a closest point of that
 // intersection. So the candidates are: each leaf's own closest point, and the closest
 // points of each pair (and, in 3D, triple) of leaves' common zero set; those on the
-// combined zero set compete and the nearest wins.
+// combined zero set compete and the nearest wins. A blended tree rounds those edges: its
+// closest point is the projection onto its own zero set from the sharp tree's one.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,7 +19,7 @@ namespace {
 
 class Csg final : public LevelSetNode {
  public:
-  Csg(CsgOp op, std::vector<NodePtr> operands) : op_(op), operands_(std::move(operands)) {
+  Csg(CsgOp op, std::vector<NodePtr> operands, double blend) : op_(op), operands_(std::move(operands)), blend_(blend) {
     for (const auto& o : operands_) o->collect_leaves(leaves_);
   }
 
@@ -29,6 +30,7 @@ class Csg final : public LevelSetNode {
   }
 
   double value_gradient(const Vec& x, Vec& g) const override {
+    if (blend_ > 0.0) return blended(x, &g, nullptr);
     const std::size_t k = active(x);
     double v = operands_[k]->value_gradient(x, g);
     if (op_ == CsgOp::Difference && k == 1) {
@@ -40,6 +42,12 @@ class Csg final : public LevelSetNode {
 
   // The active operand's Hessian, with the gradient's tie rule.
   Eigen::MatrixXd hessian(const Vec& x) const override {
+    if (blend_ > 0.0) {
+      Vec g;
+      Eigen::MatrixXd H;
+      blended(x, &g, &H);
+      return H;
+    }
     const std::size_t k = active(x);
     Eigen::MatrixXd H = operands_[k]->hessian(x);
     if (op_ == CsgOp::Difference && k == 1) H = -H;
@@ -47,6 +55,11 @@ class Csg final : public LevelSetNode {
   }
 
   std::optional<Vec> closest_point(const Vec& x) const override {
+    if (blend_ > 0.0) {
+      const Csg sharp(op_, operands_, 0.0);
+      const std::optional<Vec> start = sharp.closest_point(x);
+      return constrained_closest_point(x, {this}, start ? *start : x);
+    }
     const Eigen::Index dim = x.size();
     std::vector<std::optional<Vec>> own(leaves_.size());
     for (std::size_t i = 0; i < leaves_.size(); ++i) own[i] = leaves_[i]->closest_point(x);
@@ -105,7 +118,53 @@ class Csg final : public LevelSetNode {
     const double v = operands_[i]->value(x);
     return op_ == CsgOp::Difference && i == 1 ? -v : v;
   }
-  double combine(double a, double b) const { return op_ == CsgOp::Union ? std::min(a, b) : std::max(a, b); }
+  // min (union) or max of two values; blended within `blend_` of each other.
+  double combine(double a, double b) const {
+    const double sign = op_ == CsgOp::Union ? 1.0 : -1.0, t = a - b;
+    if (std::abs(t) < blend_) return 0.5 * (a + b) - sign * (0.25 * blend_ + t * t / (4.0 * blend_));
+    return op_ == CsgOp::Union ? std::min(a, b) : std::max(a, b);
+  }
+
+  // σ, ∇σ and (when H is given) ∇²σ of the blended tree, folding the operands left to right
+  // by the chain rule: the blend of a and b has ∂/∂a = ½ − s·t/2k, ∂/∂b = ½ + s·t/2k (t =
+  // a − b, s = +1 for min, −1 for max) and adds −s/2k (∇a − ∇b)(∇a − ∇b)ᵀ to the Hessian.
+  double blended(const Vec& x, Vec* g, Eigen::MatrixXd* H) const {
+    const double sign = op_ == CsgOp::Union ? 1.0 : -1.0;
+    const auto operand = [&](std::size_t i, Vec& gi, Eigen::MatrixXd* Hi) {
+      double v = operands_[i]->value_gradient(x, gi);
+      if (Hi) *Hi = operands_[i]->hessian(x);
+      if (op_ == CsgOp::Difference && i == 1) {
+        v = -v;
+        gi = -gi;
+        if (Hi) *Hi = -*Hi;
+      }
+      return v;
+    };
+    Eigen::MatrixXd Hv, Hb;
+    double v = operand(0, *g, H ? &Hv : nullptr);
+    Vec gb;
+    for (std::size_t i = 1; i < operands_.size(); ++i) {
+      const double b = operand(i, gb, H ? &Hb : nullptr);
+      const double t = v - b;
+      if (std::abs(t) >= blend_) {
+        if (op_ == CsgOp::Union ? b < v : b > v) {
+          v = b;
+          *g = gb;
+          if (H) Hv = Hb;
+        }
+        continue;
+      }
+      const double da = 0.5 - sign * t / (2.0 * blend_), db = 0.5 + sign * t / (2.0 * blend_);
+      if (H) {
+        const Vec dg = *g - gb;
+        Hv = da * Hv + db * Hb - (sign / (2.0 * blend_)) * dg * dg.transpose();
+      }
+      *g = da * *g + db * gb;
+      v = 0.5 * (v + b) - sign * (0.25 * blend_ + t * t / (4.0 * blend_));
+    }
+    if (H) *H = 0.5 * (Hv + Hv.transpose());
+    return v;
+  }
 
   // The operand that sets σ (the first one on ties).
   std::size_t active(const Vec& x) const {
@@ -128,11 +187,14 @@ class Csg final : public LevelSetNode {
 
   CsgOp op_;
   std::vector<NodePtr> operands_;
+  double blend_ = 0.0;
   std::vector<const LevelSetNode*> leaves_;  // owned by operands_
 };
 
 }  // namespace
 
-NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands) { return std::make_shared<Csg>(op, std::move(operands)); }
+NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands, double blend) {
+  return std::make_shared<Csg>(op, std::move(operands), blend);
+}
 
 }  // namespace meshmorph::detail

@@ -106,13 +106,13 @@ NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx) {
           return make_expression(s.expression, ctx.length_scale, c.where());
         } else if constexpr (std::is_same_v<S, UnionLevelSet>) {
           const Checker c(ctx, ls.key_path, "union");
-          return make_csg(CsgOp::Union, compile_operands(s.operands, ctx, c, 1, SIZE_MAX));
+          return make_csg(CsgOp::Union, compile_operands(s.operands, ctx, c, 1, SIZE_MAX), s.blend);
         } else if constexpr (std::is_same_v<S, IntersectionLevelSet>) {
           const Checker c(ctx, ls.key_path, "intersection");
-          return make_csg(CsgOp::Intersection, compile_operands(s.operands, ctx, c, 1, SIZE_MAX));
+          return make_csg(CsgOp::Intersection, compile_operands(s.operands, ctx, c, 1, SIZE_MAX), s.blend);
         } else if constexpr (std::is_same_v<S, DifferenceLevelSet>) {
           const Checker c(ctx, ls.key_path, "difference");
-          return make_csg(CsgOp::Difference, compile_operands(s.operands, ctx, c, 2, 2));
+          return make_csg(CsgOp::Difference, compile_operands(s.operands, ctx, c, 2, 2), s.blend);
         } else if constexpr (std::is_same_v<S, MeshLevelSet>) {
           const Checker c(ctx, ls.key_path, "mesh");
           return load_background_field(s, ctx.dim, c.where());

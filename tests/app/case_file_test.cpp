@@ -44,7 +44,8 @@ TEST_F(CaseFileTest, ReadsEveryKeyOfTheDesignExample) {
       {"group": 7,        "slide": true}
     ],
     "interface": {"union": [{"box": {"center": [0.5, 0.5, 0.5], "size": [1, 1, 2]}},
-                            {"difference": [{"torus": {"center": [0,0,0], "axis": [0,0,1], "major": 2, "minor": 0.5}},
+                            {"blend": 0.05,
+                             "difference": [{"torus": {"center": [0,0,0], "axis": [0,0,1], "major": 2, "minor": 0.5}},
                                             {"cylinder": {"center": [0,0,0], "axis": [1,0,0], "radius": 0.1}}]}]},
     "trim": {"intersection": [{"plane": {"point": [0,0,0], "normal": [0,0,1]}},
                               {"mesh": {"file": "bg.msh", "field": "phi"}}]},
@@ -82,7 +83,9 @@ TEST_F(CaseFileTest, ReadsEveryKeyOfTheDesignExample) {
   const auto& u = std::get<UnionLevelSet>(c.interface->shape);
   ASSERT_EQ(u.operands.size(), 2u);
   EXPECT_EQ(std::get<BoxLevelSet>(u.operands[0].shape).size, Eigen::Vector3d(1, 1, 2));
+  EXPECT_EQ(u.blend, 0.0);
   const auto& diff = std::get<DifferenceLevelSet>(u.operands[1].shape);
+  EXPECT_EQ(diff.blend, 0.05);
   EXPECT_EQ(diff.operands[1].key_path, "interface.union[1].difference[1]");
   EXPECT_EQ(std::get<TorusLevelSet>(diff.operands[0].shape).minor, 0.5);
   EXPECT_EQ(std::get<CylinderLevelSet>(diff.operands[1].shape).axis, Eigen::Vector3d(1, 0, 0));

@@ -18,10 +18,10 @@ const double kCrossY = std::sqrt(0.4375);
 LevelSet circle_a() { return sphere(vec({0, 0}), 1.0); }
 LevelSet circle_b() { return sphere(vec({1.5, 0}), 1.0); }
 
-LevelSet csg(int op, std::vector<LevelSet> operands) {
-  if (op == 0) return test::level_set(UnionLevelSet{std::move(operands)});
-  if (op == 1) return test::level_set(IntersectionLevelSet{std::move(operands)});
-  return test::level_set(DifferenceLevelSet{std::move(operands)});
+LevelSet csg(int op, std::vector<LevelSet> operands, double blend = 0.0) {
+  if (op == 0) return test::level_set(UnionLevelSet{std::move(operands), blend});
+  if (op == 1) return test::level_set(IntersectionLevelSet{std::move(operands), blend});
+  return test::level_set(DifferenceLevelSet{std::move(operands), blend});
 }
 
 /// The box [c − s/2, c + s/2] as the intersection of 2·dim half-spaces.
@@ -51,6 +51,43 @@ TEST(CsgLevelSet, ValuesAreMinMaxAndGradientsOfTheActiveOperand) {
     EXPECT_EQ(d.gradient(x), a.value(x) >= -b.value(x) ? a.gradient(x) : Eigen::VectorXd(-b.gradient(x)));
     for (const auto* f : {&u, &i, &d}) test::expect_gradient_matches_fd(*f, x);
   }
+}
+
+TEST(CsgLevelSet, BlendSmoothsOnlyWhereTheOperandsAreWithinIt) {
+  const double k = 0.3;
+  const LevelSetFunction a(circle_a(), 2), b(circle_b(), 2);
+  for (int op : {0, 1, 2}) {
+    const LevelSetFunction sharp(csg(op, {circle_a(), circle_b()}), 2), round(csg(op, {circle_a(), circle_b()}, k), 2);
+    for (const Eigen::VectorXd& x : {vec({-0.4, 0.3}), vec({2.0, -1.0}), vec({0.9, 0.2}), vec({0.75, 0.7}),
+                                     vec({0.8, -0.62}), vec({0.3, 1.7})}) {
+      SCOPED_TRACE(testing::Message() << "op " << op << ", x = " << x.transpose());
+      const double va = a.value(x), vb = op == 2 ? -b.value(x) : b.value(x), t = va - vb;
+      const double sign = op == 0 ? 1.0 : -1.0;
+      if (std::abs(t) >= k) EXPECT_EQ(round.value(x), sharp.value(x));
+      else EXPECT_NEAR(round.value(x), 0.5 * (va + vb) - sign * (k / 4 + t * t / (4 * k)), 1e-15);
+      // The union grows and the intersection shrinks, by at most k/4.
+      EXPECT_LE(sign * (round.value(x) - sharp.value(x)), 0.0);
+      EXPECT_LE(std::abs(round.value(x) - sharp.value(x)), k / 4 + 1e-15);
+      test::expect_gradient_matches_fd(round, x);
+    }
+  }
+}
+
+TEST(CsgLevelSet, BlendedCornerOfTwoHalfPlanesIsCutBackByAQuarterOfTheBlend) {
+  // x ≤ 0 ∩ y ≤ 0 with blend k: on the bisector σ = x + k/4 + 0, so the zero set crosses it
+  // at (−k/4, −k/4); along x = −1 (|a − b| ≥ k) it is the sharp y = 0.
+  const double k = 0.2;
+  const LevelSet left = test::level_set(PlaneLevelSet{vec({0, 0}), vec({1, 0})});
+  const LevelSet below = test::level_set(PlaneLevelSet{vec({0, 0}), vec({0, 1})});
+  const LevelSetFunction corner(csg(1, {left, below}, k), 2);
+  EXPECT_NEAR(corner.value(vec({-k / 4, -k / 4})), 0.0, 1e-15);
+  EXPECT_EQ(corner.value(vec({-1, 0})), 0.0);
+  // Its closest point from outside the rounded corner lies on it, straight along ∇σ.
+  const std::optional<Eigen::VectorXd> p = corner.closest_point(vec({0.3, 0.25}));
+  ASSERT_TRUE(p.has_value());
+  EXPECT_LE(std::abs(corner.value(*p)), 1e-12);
+  EXPECT_LE(test::tangential_residual(corner, vec({0.3, 0.25}), *p), 1e-10);
+  EXPECT_LT((*p - vec({0, 0})).norm(), k);  // on the rounding, not on a sharp face
 }
 
 TEST(CsgLevelSet, UnionOfTwoCirclesClosestPoints) {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include "geometry/level_set_fixtures.h"
@@ -123,6 +125,32 @@ TEST(LevelSetHessian, CsgTakesTheActiveOperand) {
   EXPECT_EQ(diff.hessian(left), fa.hessian(left));
   for (const auto* f : {&uni, &diff, &inter})
     for (const auto& x : {left, right, middle}) expect_hessian_matches_gradient(*f, x);
+}
+
+TEST(LevelSetHessian, BlendedCsgAddsTheBlendsCurvature) {
+  // The paper 003 §4.2 domain with its edges rounded (blend 0.05): points inside and outside
+  // the blends, 3D; and two circles in 2D.
+  const auto cylinder = [](Eigen::Vector3d axis) {
+    return test::level_set(CylinderLevelSet{vec({0.5, 0.5, 0.5}), axis, 0.15});
+  };
+  const double k = 0.05;
+  const LevelSet box = test::level_set(BoxLevelSet{vec({0.5, 0.5, 0.5}), vec({0.5, 0.5, 0.5})});
+  const LevelSet ball = test::sphere(vec({0.5, 0.5, 0.5}), 0.3);
+  const LevelSet body = test::level_set(IntersectionLevelSet{{box, ball}, k});
+  const LevelSet cx = cylinder({1, 0, 0}), cy = cylinder({0, 1, 0}), cz = cylinder({0, 0, 1});
+  const LevelSet holes = test::level_set(UnionLevelSet{{cx, cy, cz}, k});
+  const LevelSet solid = test::level_set(DifferenceLevelSet{{body, holes}, k});
+  const LevelSetFunction f(solid, 3);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 0.8);
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::VectorXd x = vec({u(rng), u(rng), u(rng)});
+    expect_hessian_matches_gradient(f, x, 1e-6);
+  }
+  const LevelSet a = test::sphere(vec({0, 0}), 1), b = test::sphere(vec({1.5, 0}), 1);
+  const LevelSet uab = test::level_set(UnionLevelSet{{a, b}, 0.3}), dab = test::level_set(DifferenceLevelSet{{a, b}, 0.3});
+  for (const LevelSetFunction& g : {LevelSetFunction(uab, 2), LevelSetFunction(dab, 2)})
+    for (const auto& x : {vec({0.75, 0.7}), vec({0.8, -0.62}), vec({-0.5, 0.3})}) expect_hessian_matches_gradient(g, x);
 }
 
 TEST(LevelSetHessian, MeshFieldsDifferentiateThePolynomialOfTheCellHoldingThePoint) {

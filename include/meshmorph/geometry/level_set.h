@@ -27,12 +27,15 @@ struct BoxLevelSet { CaseVector center, size; };
 struct TorusLevelSet { CaseVector center, axis; double major = 0, minor = 0; };
 /// A muparser expression in x, y, z (constant pi), compiled once by the parser to check it.
 struct ExprLevelSet { std::string expression; };
-/// min over the operands (≥ 1 operand).
-struct UnionLevelSet { std::vector<LevelSet> operands; };
+/// min over the operands (≥ 1 operand). With `blend` k > 0 (all three CSG kinds), each min
+/// (max) of two values a, b closer than k is smoothed to the quadratic (a + b)/2 ∓ k/4 ∓
+/// (a − b)²/(4k): the edges where operands meet are rounded, the surface moving by at most
+/// k/4 there and nowhere else.
+struct UnionLevelSet { std::vector<LevelSet> operands; double blend = 0; };
 /// max over the operands (≥ 1 operand).
-struct IntersectionLevelSet { std::vector<LevelSet> operands; };
+struct IntersectionLevelSet { std::vector<LevelSet> operands; double blend = 0; };
 /// operands[0] minus operands[1]: max(a, −b) (exactly 2 operands).
-struct DifferenceLevelSet { std::vector<LevelSet> operands; };
+struct DifferenceLevelSet { std::vector<LevelSet> operands; double blend = 0; };
 /// A nodal field `field` of a background mesh `file` (paper 003 §3.1); path resolved.
 struct MeshLevelSet { std::filesystem::path file; std::string field; };
 /// The signed distance to the boundary of {σ < 0} of operands[0] (only its sign is used),

@@ -79,7 +79,8 @@ NodePtr make_torus(const TorusLevelSet& s);
 /// Throws InputError(`where` + ": invalid expression ...") when it does not compile.
 NodePtr make_expression(const std::string& expression, double length_scale, const std::string& where);
 enum class CsgOp { Union, Intersection, Difference };
-NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands);
+/// `blend` > 0: smooth min/max of each pair closer than it (UnionLevelSet's note).
+NodePtr make_csg(CsgOp op, std::vector<NodePtr> operands, double blend = 0.0);
 /// Throws InputError(`where` + ": ...") for a mesh without cells, a size mismatch or a
 /// non-finite value (naming the node).
 NodePtr make_background_field(Mesh mesh, Eigen::VectorXd values, const std::string& where);
