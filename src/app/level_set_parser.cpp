@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include <muParser.h>
 
@@ -72,11 +73,10 @@ LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesyste
   const json& v = first.value();
   const JsonWhere at = w.key(kind);
   double blend = 0.0;
-  if (blended) {
-    if (kind != "union" && kind != "intersection" && kind != "difference")
-      w.key("blend").fail("\"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"" + kind + "\"");
+  if (blended && (kind == "union" || kind == "intersection" || kind == "difference"))
     blend = read_positive(j.at("blend"), w.key("blend"));
-  }
+  else if (blended && std::string_view(kKinds).find(kind) != std::string_view::npos)  // unknown kinds: below
+    w.key("blend").fail("\"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"" + kind + "\"");
   LevelSet ls;
   ls.key_path = w.path;
   if (kind == "sphere") {
