@@ -160,7 +160,7 @@ class Csg final : public LevelSetNode {
         Hv = da * Hv + db * Hb - (sign / (2.0 * blend_)) * dg * dg.transpose();
       }
       *g = da * *g + db * gb;
-      v = 0.5 * (v + b) - sign * (0.25 * blend_ + t * t / (4.0 * blend_));
+      v = combine(v, b);
     }
     if (H) *H = 0.5 * (Hv + Hv.transpose());
     return v;
