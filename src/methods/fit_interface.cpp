@@ -161,6 +161,12 @@ Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<s
       out.x.conservativeResize(Eigen::NoChange, p + 1);
       out.x.col(p) = centre;
       if (!out.node_tags.empty()) out.node_tags.push_back(++next_tag);
+      for (auto& [name, field] : out.node_fields) {  // the new node takes the mean, like its position
+        double mean = 0.0;
+        for (int a = 0; a < n; ++a) mean += field[v[a]];
+        field.conservativeResize(p + 1);
+        field[p] = mean / n;
+      }
       for (int a = 0; a < n; ++a) add(v[a], v[(a + 1) % n], p);
     }
     if (kept.n_cells() > 0) out.cells.push_back(std::move(kept));

@@ -65,6 +65,18 @@ TEST(FitInterface, CorrectedIndicatorsLeaveOneInterfaceFacetPerCell) {
   }
 }
 
+// A split adds centroid nodes: nodal fields grow with them, and a linear field stays linear.
+TEST(FitInterface, SplitsCarryNodalFieldsToTheNewNodes) {
+  Mesh mesh = structured_mesh(ElementType::Quadrilateral, 1, 10);
+  mesh.node_fields["f"] = (mesh.x.row(0) + 2.0 * mesh.x.row(1)).transpose();
+  const Marked m = mark(mesh, circle(0.3));
+  ASSERT_GT(m.mesh.n_nodes(), mesh.n_nodes());
+  const Eigen::VectorXd& f = m.mesh.node_fields.at("f");
+  ASSERT_EQ(f.size(), static_cast<Eigen::Index>(m.mesh.n_nodes()));
+  for (std::size_t i = 0; i < m.mesh.n_nodes(); ++i)
+    EXPECT_NEAR(f[i], m.mesh.x(0, i) + 2.0 * m.mesh.x(1, i), 1e-14) << "node " << i;
+}
+
 // The derivatives of F = F_μ + w Σ σ² against differences of F at a state with σ ≠ 0.
 TEST(FitProblem, GradientAndHessianMatchDifferences) {
   const Mesh mesh = elevate_order(structured_mesh(ElementType::Triangle, 1, 4), 2);

@@ -41,7 +41,8 @@ std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vect
 /// cut along the diagonal from that corner (two triangles, one interface facet each); any
 /// other listed triangle or quadrilateral is split from a new node at its centroid. The new
 /// cells keep their cell's indicator; `eta` is extended accordingly. Facet blocks and groups
-/// are kept. Throws std::invalid_argument for other cell types or orders.
+/// are kept; a new node's tag follows the largest, its nodal field values are the means over
+/// its cell's corners. Throws std::invalid_argument for other cell types or orders.
 Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& cells,
                  std::vector<std::uint8_t>& eta);
 
