@@ -67,14 +67,17 @@ TEST(FitInterface, CorrectedIndicatorsLeaveOneInterfaceFacetPerCell) {
 
 // A split adds centroid nodes: nodal fields grow with them, and a linear field stays linear.
 TEST(FitInterface, SplitsCarryNodalFieldsToTheNewNodes) {
-  Mesh mesh = structured_mesh(ElementType::Quadrilateral, 1, 10);
+  Mesh mesh = structured_mesh(ElementType::Quadrilateral, 1, 3);
   mesh.node_fields["f"] = (mesh.x.row(0) + 2.0 * mesh.x.row(1)).transpose();
-  const Marked m = mark(mesh, circle(0.3));
-  ASSERT_GT(m.mesh.n_nodes(), mesh.n_nodes());
-  const Eigen::VectorXd& f = m.mesh.node_fields.at("f");
-  ASSERT_EQ(f.size(), static_cast<Eigen::Index>(m.mesh.n_nodes()));
-  for (std::size_t i = 0; i < m.mesh.n_nodes(); ++i)
-    EXPECT_NEAR(f[i], m.mesh.x(0, i) + 2.0 * m.mesh.x(1, i), 1e-14) << "node " << i;
+  const Topology topo = build_topology(mesh);
+  std::vector<std::uint8_t> eta(mesh.n_cells(), 0);
+  eta[4] = 1;  // the middle cell: all four facets on the interface, split from its centroid
+  const Mesh split = split_cells(mesh, topo, {4}, eta);
+  ASSERT_EQ(split.n_nodes(), mesh.n_nodes() + 1);
+  const Eigen::VectorXd& f = split.node_fields.at("f");
+  ASSERT_EQ(f.size(), static_cast<Eigen::Index>(split.n_nodes()));
+  for (std::size_t i = 0; i < split.n_nodes(); ++i)
+    EXPECT_NEAR(f[i], split.x(0, i) + 2.0 * split.x(1, i), 1e-14) << "node " << i;
 }
 
 // The derivatives of F = F_μ + w Σ σ² against differences of F at a state with σ ≠ 0.
