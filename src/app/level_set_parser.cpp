@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <string_view>
 
 #include <muParser.h>
 
@@ -72,11 +71,11 @@ LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesyste
   const std::string kind = first.key();
   const json& v = first.value();
   const JsonWhere at = w.key(kind);
+  // Read here for the CSG kinds; beside any other known kind it is rejected after the
+  // chain below, where an unknown kind has failed first.
   double blend = 0.0;
   if (blended && (kind == "union" || kind == "intersection" || kind == "difference"))
     blend = read_positive(j.at("blend"), w.key("blend"));
-  else if (blended && std::string_view(kKinds).find(kind) != std::string_view::npos)  // unknown kinds: below
-    w.key("blend").fail("\"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"" + kind + "\"");
   LevelSet ls;
   ls.key_path = w.path;
   if (kind == "sphere") {
@@ -151,6 +150,8 @@ LevelSet parse_level_set(const json& j, const JsonWhere& w, const std::filesyste
   } else {
     at.fail(std::string("unknown level-set kind (expected one of: ") + kKinds + ")");
   }
+  if (blended && blend == 0.0)
+    w.key("blend").fail("\"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"" + kind + "\"");
   return ls;
 }
 

@@ -21,6 +21,7 @@ class Csg final : public LevelSetNode {
  public:
   Csg(CsgOp op, std::vector<NodePtr> operands, double blend) : op_(op), operands_(std::move(operands)), blend_(blend) {
     for (const auto& o : operands_) o->collect_leaves(leaves_);
+    if (blend_ > 0.0) sharp_ = std::make_unique<Csg>(op_, operands_, 0.0);
   }
 
   double value(const Vec& x) const override {
@@ -55,9 +56,8 @@ class Csg final : public LevelSetNode {
   }
 
   std::optional<Vec> closest_point(const Vec& x) const override {
-    if (blend_ > 0.0) {
-      const Csg sharp(op_, operands_, 0.0);
-      const std::optional<Vec> start = sharp.closest_point(x);
+    if (sharp_) {
+      const std::optional<Vec> start = sharp_->closest_point(x);
       return constrained_closest_point(x, {this}, start ? *start : x);
     }
     const Eigen::Index dim = x.size();
@@ -189,6 +189,7 @@ class Csg final : public LevelSetNode {
   std::vector<NodePtr> operands_;
   double blend_ = 0.0;
   std::vector<const LevelSetNode*> leaves_;  // owned by operands_
+  std::unique_ptr<const Csg> sharp_;         // a blended tree's sharp copy, its closest points' start
 };
 
 }  // namespace
