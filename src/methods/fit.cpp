@@ -9,6 +9,7 @@
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/fit_problem.h"
 #include "methods/detail/format.h"
+#include "methods/detail/newton_solver.h"
 
 namespace meshmorph {
 namespace {
@@ -31,13 +32,7 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
     return result;
   }
 
-  LinearSolverOptions lo;
-  lo.kind = options.solver;
-  lo.block_size = d;
-  lo.dim = d;
-  lo.cell_nodes = mesh.max_cell_nodes();
-  lo.threads = options.threads;
-  const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
+  const std::unique_ptr<LinearSolver> solver = detail::make_newton_solver<d>(options.solver, options.threads, mesh, P.dofs());
   NewtonMemory memory;
 
   // Algorithm 1 with eq. 13. N_σ bounds the consecutive weight increases (§3.4: "the maximum

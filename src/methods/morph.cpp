@@ -13,6 +13,7 @@
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/format.h"
 #include "methods/detail/morph_problem.h"
+#include "methods/detail/newton_solver.h"
 
 namespace meshmorph {
 
@@ -30,13 +31,7 @@ class MorphImpl final : public Morpher::Impl {
  public:
   MorphImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options)
       : options_(options), problem_(input, topology, bc, options.threads) {
-    LinearSolverOptions lo;
-    lo.kind = options.solver;
-    lo.block_size = d;
-    lo.dim = d;
-    lo.cell_nodes = input.max_cell_nodes();
-    lo.threads = options.threads;
-    solver_ = make_linear_solver(lo, problem_.n_free());
+    solver_ = detail::make_newton_solver<d>(options.solver, options.threads, input, problem_.dofs());
   }
 
   MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) override {

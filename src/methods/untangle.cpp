@@ -10,6 +10,7 @@
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/format.h"
+#include "methods/detail/newton_solver.h"
 #include "methods/detail/untangle_problem.h"
 
 namespace meshmorph {
@@ -37,13 +38,7 @@ class UntangleImpl final : public Untangler::Impl {
  public:
   UntangleImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options)
       : options_(options), bc_(&bc), problem_(input, topology, bc, options.reference, options.n, options.threads) {
-    LinearSolverOptions lo;
-    lo.kind = options.solver;
-    lo.block_size = d;
-    lo.dim = d;
-    lo.cell_nodes = input.max_cell_nodes();
-    lo.threads = options.threads;
-    solver_ = make_linear_solver(lo, problem_.n_free());
+    solver_ = detail::make_newton_solver<d>(options.solver, options.threads, input, problem_.dofs());
   }
 
   UntangleResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) override {

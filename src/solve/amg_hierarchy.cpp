@@ -56,12 +56,37 @@ bool AmgHierarchy::setup(const SparseView& A) {
   // is Q = the aggregate's entries / their norm, R = the norm times I, so the coarse
   // near-null space keeps that form: a weight per node, the same for every component.
   std::vector<double> weights(static_cast<std::size_t>(A.n / block), 1.0);
+  given_ = first_.rows > 0 && first_.rows == A.n && A.n > options_.coarse_size ? 1 : 0;
   for (std::size_t l = 0;; ++l) {
     if (!prepare_level(levels_[l])) return false;
+    if (l == 0 && given_) {
+      build_given_level(weights);
+      continue;
+    }
     const bool last = levels_[l].A.n <= options_.coarse_size || l + 1 >= static_cast<std::size_t>(options_.max_levels) ||
                       !build_level(l, weights);
     if (last) return coarse_.factorize(levels_[l].A);
   }
+}
+
+void AmgHierarchy::set_first_prolongator(Csr P) {
+  first_ = std::move(P);
+  levels_.clear();
+}
+
+void AmgHierarchy::build_given_level(std::vector<double>& weights) {
+  const int threads = std::max(1, options_.threads);
+  Level& L = levels_[0];
+  L.P = first_;
+  L.R = transpose(L.P, threads);
+  Level next;
+  next.own = multiply(L.R, multiply(L.A, L.P, threads), threads);
+  const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
+  next.block = b;
+  levels_.push_back(std::move(next));
+  levels_.back().A = levels_.back().own.view();
+  // The hats sum to one at every node: the coarse constants are the fine ones.
+  weights.assign(static_cast<std::size_t>(first_.cols / b), 1.0);
 }
 
 bool AmgHierarchy::rebind(const SparseView& A) {
@@ -95,7 +120,7 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   const int threads = std::max(1, options_.threads);
   const int b = levels_[l].block;
   const SparseView A = levels_[l].A;
-  const double theta = options_.strength * std::pow(0.5, static_cast<double>(l));
+  const double theta = options_.strength * std::pow(0.5, static_cast<double>(l - given_));  // θ halves per aggregation
   int n_agg = 0;
   const std::vector<int> agg = aggregate_nodes(A, b, theta, threads, n_agg);
   const int n_nodes = A.n / b;

@@ -62,6 +62,18 @@ void CgAmgSolver::track(const LinearSolveStats& stats) {
     rebuild_ = true;
 }
 
+void CgAmgSolver::set_coarse_space(const Eigen::SparseMatrix<double>& P) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = P;  // sorted column indices per row
+  Csr first;
+  first.rows = static_cast<int>(rows.rows());
+  first.cols = static_cast<int>(rows.cols());
+  first.ptr.assign(rows.outerIndexPtr(), rows.outerIndexPtr() + rows.rows() + 1);
+  first.idx.assign(rows.innerIndexPtr(), rows.innerIndexPtr() + rows.nonZeros());
+  first.val.assign(rows.valuePtr(), rows.valuePtr() + rows.nonZeros());
+  amg_.set_first_prolongator(std::move(first));
+  built_ = ready_ = false;
+}
+
 LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                              Eigen::VectorXd& x, double rtol) {
   if (!ready_ || A.rows() != A_.n || A.nonZeros() != nnz_) {

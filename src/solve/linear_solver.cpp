@@ -22,11 +22,12 @@ LinearSolverKind resolve_linear_solver(LinearSolverKind kind, int dim, std::size
   // up to ~30k unknowns, where it costs under a second and does not depend on conditioning
   // (the penalty of an augmented Lagrangian reaches 1e9 times the mesh stiffness).
   constexpr std::size_t k_cholesky_max_3d = 30000;
-  // High-order cells couple a node with hundreds of unknowns, and the smoothed prolongator's
-  // A·P takes the pattern of A²: the AMG set-up explodes. Measured (2 threads): morph
-  // bl_sphere_p3 (115k P3-tet unknowns) 353 s with CG-AMG, 44 s and 1.6 GB with CHOLMOD;
-  // fit of the 64³ CSG mesh (250k P2-hex unknowns) over 3 min and 6.6 GB in the AMG set-up
-  // without finishing it, 8 s a step and 2.6 GB with CHOLMOD.
+  // High-order cells couple a node with hundreds of unknowns. CG-AMG with the vertex hats as
+  // its first coarse level (the methods' set_coarse_space) still takes more CG iterations
+  // than a factorization costs up to a few hundred thousand unknowns. Measured (2 threads):
+  // morph bl_sphere_p3 (115k P3-tet unknowns) 205 s and 0.4 GB with it, 44–50 s and 1.6 GB
+  // with CHOLMOD (aggregating the P3 Hessian itself: 353 s); fit of the 64³ CSG mesh (250k
+  // P2-hex unknowns) 8 s a step and 2.6 GB with CHOLMOD.
   constexpr int k_dense_cell_nodes = 20;
   constexpr std::size_t k_cholesky_max_dense_3d = 300000;
   if (dim <= 2 || n <= k_cholesky_max_3d) return LinearSolverKind::Cholesky;

@@ -9,6 +9,7 @@
 
 #include "energy/energy_fixtures.h"
 #include "meshmorph/energy/assembler.h"
+#include "meshmorph/energy/coarse_space.h"
 
 namespace meshmorph {
 namespace {
@@ -90,6 +91,92 @@ TEST(HessianAction, MatchesTheAssembledHessian) {
     }
   // Gauss points: point counts the sum-factorized kernel is not compiled for.
   action_matches_assembly<3>(ElementType::Hexahedron, 2, true, QuadratureFamily::Gauss);
+}
+
+// The solver's hats: with nothing fixed they equal CoarseSpace's R and interpolate every
+// linear function exactly (on an affine mesh); a fixed boundary drops whole vertices (every
+// column block of d complete) and exactly those whose hats reach a fixed DOF.
+template <int d>
+void vertex_hats_span_linear_functions(ElementType type, int order) {
+  SCOPED_TRACE(std::string(name_of(type)) + " order " + std::to_string(order));
+  const Mesh mesh = structured_mesh(type, order, 3);
+  const Topology topology = build_topology(mesh);
+  const TargetField<d> targets = build_targets<d>(mesh, mesh.x, TargetKind::Ideal);
+  const DofMap free = DofMap::all_free(d, mesh.n_nodes());
+  const Eigen::SparseMatrix<double> R = vertex_hats<d>(mesh, free);
+  EXPECT_EQ((Eigen::MatrixXd(R) - Eigen::MatrixXd(CoarseSpace<d>(mesh, free, targets).R())).norm(), 0.0);
+  // Each column's vertex: the node where its hat is 1.
+  const auto vertices_of = [](const Eigen::SparseMatrix<double>& M, const DofMap& dofs) {
+    std::vector<std::int32_t> v(static_cast<std::size_t>(M.cols()), -1);
+    for (Eigen::Index j = 0; j < M.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(M, j); it; ++it)
+        if (std::abs(it.value() - 1.0) < 1e-14) v[static_cast<std::size_t>(j)] = dofs.free_dofs()[static_cast<std::size_t>(it.row())] / d;
+    return v;
+  };
+  const std::vector<std::int32_t> vertex = vertices_of(R, free);
+  // f(x) = A x + c component by component, at the vertices (coarse) and at every node (fine).
+  Eigen::MatrixXd A(d, d);
+  A.setRandom();
+  const Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(d, 0.5, 1.5);
+  Eigen::VectorXd coarse(R.cols()), fine(R.rows());
+  for (Eigen::Index j = 0; j < R.cols(); ++j) {
+    ASSERT_GE(vertex[static_cast<std::size_t>(j)], 0);
+    coarse[j] = (A * mesh.x.col(vertex[static_cast<std::size_t>(j)]) + c)[j % d];
+  }
+  for (Eigen::Index i = 0; i < R.rows(); ++i) fine[i] = (A * mesh.x.col(i / d) + c)[i % d];
+  EXPECT_LE((R * coarse - fine).cwiseAbs().maxCoeff(), 1e-12);
+
+  const DofMap fixed = DofMap::fixing_boundary(mesh, topology);
+  const Eigen::SparseMatrix<double> Rb = vertex_hats<d>(mesh, fixed);
+  ASSERT_GT(Rb.cols(), 0);
+  EXPECT_EQ(Rb.cols() % d, 0);
+  EXPECT_EQ(Rb.rows(), static_cast<Eigen::Index>(fixed.n_free()));
+  // A vertex is kept, with its d components in a row, exactly when its hat (the all-free
+  // column) is zero at every fixed DOF; the kept columns are the all-free ones restricted.
+  std::set<std::int32_t> kept;
+  const std::vector<std::int32_t> kept_vertex = vertices_of(Rb, fixed);
+  for (Eigen::Index j = 0; j < Rb.cols(); ++j) {
+    EXPECT_EQ(kept_vertex[static_cast<std::size_t>(j)], kept_vertex[static_cast<std::size_t>(j - j % d)]);
+    kept.insert(kept_vertex[static_cast<std::size_t>(j)]);
+  }
+  EXPECT_EQ(static_cast<Eigen::Index>(kept.size() * d), Rb.cols());
+  Eigen::Index next = 0;
+  bool touches_fixed = false;
+  for (Eigen::Index j = 0; j < R.cols(); ++j) {
+    if (j % d == 0) touches_fixed = false;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(R, j); it; ++it)
+      touches_fixed = touches_fixed || !fixed.is_free(static_cast<std::size_t>(it.row()));
+    const bool is_kept = kept.count(vertex[static_cast<std::size_t>(j)]) > 0;
+    if (j % d == d - 1) {
+      EXPECT_EQ(is_kept, !touches_fixed) << "vertex " << vertex[static_cast<std::size_t>(j)];
+    }
+    if (!is_kept) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(R, j); it; ++it)
+      if (const std::int32_t row = fixed.reduced(static_cast<std::size_t>(it.row())); row >= 0) {
+        EXPECT_EQ(Rb.coeff(row, next), it.value());
+      }
+    ++next;
+  }
+  EXPECT_EQ(next, Rb.cols());
+  // Only the first component fixed on the boundary: the vertices next to it are still
+  // dropped whole, so the columns still come in complete blocks of d.
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) mask[d * i] = fixed.is_free(d * i) ? 0 : 1;
+  const DofMap partial = DofMap::from_mask(d, mask);
+  const Eigen::SparseMatrix<double> Rp = vertex_hats<d>(mesh, partial);
+  EXPECT_EQ(Rp.cols(), Rb.cols());
+  const std::vector<std::int32_t> partial_vertex = vertices_of(Rp, partial);
+  for (Eigen::Index j = 0; j < Rp.cols(); ++j)
+    EXPECT_EQ(partial_vertex[static_cast<std::size_t>(j)], kept_vertex[static_cast<std::size_t>(j)]);
+}
+
+TEST(VertexHats, SpanLinearFunctionsAndDropWholeVertices) {
+  for (int order : {1, 2, 3}) {
+    vertex_hats_span_linear_functions<2>(ElementType::Triangle, order);
+    vertex_hats_span_linear_functions<2>(ElementType::Quadrilateral, order);
+    vertex_hats_span_linear_functions<3>(ElementType::Tetrahedron, order);
+    vertex_hats_span_linear_functions<3>(ElementType::Hexahedron, order);
+  }
 }
 
 // An inverted cell: no action, as assemble() gives F = +∞.

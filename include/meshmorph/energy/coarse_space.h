@@ -61,4 +61,12 @@ class CoarseSpace {
   std::vector<std::vector<std::int32_t>> scatter_;
 };
 
+/// The same hats as a prolongator for the iterative linear solver's first coarse level
+/// (LinearSolver::set_coarse_space): n_free × d·(kept vertices), each vertex's d components
+/// consecutive. A vertex is kept only where its hat vanishes at every fixed DOF of every
+/// component, so that its coarse unknowns form a whole block as the solver's aggregation
+/// needs. Built without quadrature tables: all a Hessian's matrix is needed for.
+template <int d>
+Eigen::SparseMatrix<double> vertex_hats(const Mesh& mesh, const DofMap& dofs);
+
 }  // namespace meshmorph

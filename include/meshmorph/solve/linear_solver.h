@@ -72,6 +72,12 @@ class LinearSolver {
   /// curvature, or when the tolerance is not reached within the backend's budget.
   virtual LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                           Eigen::VectorXd& x, double rtol = 0.0);
+  /// The iterative backend's first coarse level: P (unknowns × coarse unknowns, columns in
+  /// whole blocks of block_size per coarse node), in place of the first aggregation. For
+  /// high-order meshes the vertex hats (energy/coarse_space.h), which keep the set-up's
+  /// products as sparse as on the linear mesh. Takes effect at the next factorize(); the
+  /// other backends ignore it.
+  virtual void set_coarse_space(const Eigen::SparseMatrix<double>& /*P*/) {}
   /// Whether solve_previous() costs little next to factorize() (a few preconditioned
   /// iterations with a direct factor, not a multigrid-preconditioned Krylov solve).
   virtual bool cheap_previous() const { return false; }

@@ -43,6 +43,7 @@ class FitProblem final : public MatrixFreeNewtonProblem {
              const std::vector<FitTerm>& slides = {}, bool matrix_free = false);
 
   std::size_t n_free() const { return dofs_.n_free(); }
+  const DofMap& dofs() const { return dofs_; }
   const Eigen::MatrixXd& state() const { return x_; }
   double weight = 1.0;  ///< w_σ
 

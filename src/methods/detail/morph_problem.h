@@ -21,6 +21,7 @@ class MorphProblem final : public NewtonProblem {
   MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads);
 
   std::size_t n_free() const { return dofs_.n_free(); }
+  const DofMap& dofs() const { return dofs_; }
   void set_state(const Eigen::MatrixXd& x) {
     x_ = x;
     ++version_;

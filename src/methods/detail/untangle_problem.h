@@ -35,6 +35,7 @@ class UntangleProblem final : public NewtonProblem {
                   UntangleReference reference, double n, int threads);
 
   std::size_t n_free() const { return dofs_.n_free(); }
+  const DofMap& dofs() const { return dofs_; }
   std::size_t n_cells() const { return n_cells_; }
   void set_state(const Eigen::MatrixXd& x) { x_ = x; }
   const Eigen::MatrixXd& state() const { return x_; }

@@ -31,6 +31,13 @@ class AmgHierarchy {
   /// positive definite (a diagonal entry ≤ 0, or a Cholesky pivot ≤ 0 of the coarsest
   /// Galerkin operator).
   bool setup(const SparseView& A);
+  /// Makes `P` (rows of A × coarse unknowns, in whole blocks of block_size per coarse node)
+  /// the prolongator from the first coarse level, kept as it is (not smoothed), at every
+  /// later setup(); aggregation starts below it. For high-order Lagrange spaces the vertex
+  /// hats: their Galerkin operator PᵀAP has the linear mesh's pattern, where aggregating A
+  /// itself would give the smoothed prolongator the pattern of A² (dense rows). An empty P
+  /// goes back to aggregating A.
+  void set_first_prolongator(Csr P);
   /// Makes a new matrix of the finest level's pattern the finest operator, keeping the coarse
   /// levels built for the old one (a cheaper, slightly weaker preconditioner). False when A
   /// has a diagonal entry ≤ 0 or there is no hierarchy of its size.
@@ -63,10 +70,13 @@ class AmgHierarchy {
   bool prepare_level(Level& L);
   void residual_of(Level& L) const;  // L.r = L.b − A L.x
   bool build_level(std::size_t l, std::vector<double>& weights);
+  void build_given_level(std::vector<double>& weights);  // level 1 through first_
   void smooth(Level& L, bool zero_guess);
   void cycle(std::size_t l);
 
   AmgOptions options_;
+  Csr first_;      // set_first_prolongator's P (rows = 0: none)
+  std::size_t given_ = 0;  // 1 when the hierarchy's first coarse level came through first_
   std::vector<Level> levels_;
   CholmodSolver coarse_;
 };

@@ -18,6 +18,7 @@ class CgAmgSolver final : public LinearSolver {
   LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                   double rtol = 0.0) override;
+  void set_coarse_space(const Eigen::SparseMatrix<double>& P) override;
   std::string name() const override { return "cg-amg"; }
 
   const AmgHierarchy& hierarchy() const { return amg_; }

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+
+#include "meshmorph/energy/coarse_space.h"
+#include "meshmorph/energy/dof_map.h"
+#include "meshmorph/mesh/mesh.h"
+#include "meshmorph/solve/linear_solver.h"
+
+namespace meshmorph::detail {
+
+/// The linear solver of a method's Newton steps on the free DOFs of `mesh` (d unknowns per
+/// node). On high-order meshes the iterative backend gets the vertex hats as its first
+/// coarse level (LinearSolver::set_coarse_space): aggregating their dense Hessian rows
+/// directly costs minutes of set-up.
+template <int d>
+std::unique_ptr<LinearSolver> make_newton_solver(LinearSolverKind kind, int threads, const Mesh& mesh,
+                                                 const DofMap& dofs) {
+  LinearSolverOptions lo;
+  lo.kind = kind;
+  lo.block_size = d;
+  lo.dim = d;
+  lo.cell_nodes = mesh.max_cell_nodes();
+  lo.threads = threads;
+  std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, dofs.n_free());
+  if (mesh.order() > 1 && resolve_linear_solver(kind, d, dofs.n_free(), lo.cell_nodes) == LinearSolverKind::Iterative)
+    solver->set_coarse_space(vertex_hats<d>(mesh, dofs));
+  return solver;
+}
+
+}  // namespace meshmorph::detail
