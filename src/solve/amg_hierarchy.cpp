@@ -56,7 +56,7 @@ bool AmgHierarchy::setup(const SparseView& A) {
   // is Q = the aggregate's entries / their norm, R = the norm times I, so the coarse
   // near-null space keeps that form: a weight per node, the same for every component.
   std::vector<double> weights(static_cast<std::size_t>(A.n / block), 1.0);
-  given_ = first_.rows > 0 && first_.rows == A.n && A.n > options_.coarse_size ? 1 : 0;
+  given_ = first_.cols > 0 && first_.rows == A.n && A.n > options_.coarse_size ? 1 : 0;
   for (std::size_t l = 0;; ++l) {
     if (!prepare_level(levels_[l])) return false;
     if (l == 0 && given_) {

@@ -75,7 +75,7 @@ class AmgHierarchy {
   void cycle(std::size_t l);
 
   AmgOptions options_;
-  Csr first_;      // set_first_prolongator's P (rows = 0: none)
+  Csr first_;      // set_first_prolongator's P (no columns: none)
   std::size_t given_ = 0;  // 1 when the hierarchy's first coarse level came through first_
   std::vector<Level> levels_;
   CholmodSolver coarse_;
