@@ -92,6 +92,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   report.case_file = a.case_file;
   Eigen::MatrixXd x = input.x;
   long long krylov = 0;  // CG iterations, also those preconditioned by a Cholesky factor (printed, not in the report)
+  std::size_t guarded = 0;  // cells guarded at their validity samples (MorphResult::guarded_cells)
   if (settings.method == "morph") {
     Morpher morpher(input, topology, bc, settings.morph);
     IterationCounts counts;
@@ -103,6 +104,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       counts.newton += r.newton;
       counts.linear += r.linear;
       krylov += r.krylov;
+      guarded = r.guarded_cells;
       for (const MorphIteration& h : r.history)
         report.history.push_back({{"step", h.step}, {"outer", h.outer}, {"constraint_norm", h.constraint_norm},
                                   {"boundary_error_max", h.boundary_error_max}, {"min_quality", h.min_quality},
@@ -138,7 +140,9 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   // Only a converged, valid result is written as a mesh (issue 3: a run that misses its goal
   // writes none); the report is always written.
   detail::write_result_mesh(report, moved, q, output);
-  if (report_path) write_report(*report_path, report);
+  nlohmann::ordered_json extra = nlohmann::ordered_json::object();
+  if (settings.method == "morph") extra["guarded_cells"] = guarded;
+  if (report_path) write_report(*report_path, report, extra);
 
   out << "morph    " << a.case_file << " (" << report.method << ")\n"
       << "mesh     " << input.dim << "D, " << input.n_nodes() << " nodes, " << input.n_cells() << " cells, order "
@@ -146,7 +150,9 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   if (report.iterations)
     out << "work     " << report.iterations->outer << " AL iterations, " << report.iterations->nonlinear
         << " nonlinear solves, " << report.iterations->newton << " Newton steps, " << report.iterations->linear
-        << " linear solves" << (krylov > 0 ? " (" + std::to_string(krylov) + " CG iterations)" : std::string()) << "\n";
+        << " linear solves" << (krylov > 0 ? " (" + std::to_string(krylov) + " CG iterations)" : std::string())
+        << (guarded > 0 ? "; " + std::to_string(guarded) + " cells guarded at their validity samples" : std::string())
+        << "\n";
   char line[160];
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f; inverted %zu\n", q.min_quality, q.mean_quality,
                 q.inverted_elements);

@@ -129,6 +129,7 @@ class MorphImpl final : public Morpher::Impl {
                        " augmented-Lagrangian iterations (max error " +
                        format("%.3g, tolerance %.3g)", result.history.back().boundary_error_max, tol_max);
     x = P.state();
+    result.guarded_cells = P.guarded_cells();
     return result;
   }
 

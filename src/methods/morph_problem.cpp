@@ -15,7 +15,7 @@ namespace meshmorph {
 
 template <int d>
 MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads)
-    : mesh_(&input), bc_(&bc), threads_(threads) {
+    : mesh_(&input), bc_(&bc), threads_(threads), guard_(input, dofs_) {
   targets_ = build_targets<d>(input, input.x, TargetKind::Input);
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0);
   std::vector<std::int32_t> constrained;
@@ -70,6 +70,7 @@ void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
   o.weights = weights_;
   o.threads = threads_;
   assembler_->assemble(*metric_, x_, o, out);
+  if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, Want::Hessian, mode, out);
   if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, Want::Hessian, out);
 }
 
@@ -77,7 +78,8 @@ template <int d>
 double MorphProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
   trial_ = x_;
   dofs_.add_step(p, alpha, trial_);
-  const double v = assembler_->value(*metric_, trial_, weights_, threads_);
+  double v = assembler_->value(*metric_, trial_, weights_, threads_);
+  if (std::isfinite(v) && !guard_.empty()) v += guard_.value(*metric_, trial_, weights_);
   return std::isfinite(v) ? v + penalty_->value(trial_) : v;
 }
 
@@ -87,6 +89,7 @@ bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
   trial_ = x_;
   dofs_.add_step(p, alpha, trial_);
   bool valid = true;
+  std::size_t first = 0;
   for (const CellBlock& block : mesh_->cells) {
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
     const int n = block.n_nodes_per_cell();
@@ -94,10 +97,23 @@ bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       Eigen::MatrixXd X(d, n);
       for (int a = 0; a < n; ++a) X.col(a) = trial_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
-      valid = valid && min_jacobian_det(block.type, block.order, X) > 0.0;
+      if (min_jacobian_det(block.type, block.order, X) > 0.0) continue;
+      valid = false;
+#pragma omp critical(meshmorph_morph_blocking)
+      blocking_.push_back(first + static_cast<std::size_t>(c));
     }
+    first += block.n_cells();
   }
   return valid;
+}
+
+template <int d>
+bool MorphProblem<d>::refine() {
+  if (blocking_.empty()) return false;
+  std::sort(blocking_.begin(), blocking_.end());
+  const bool added = guard_.add(blocking_) > 0;
+  blocking_.clear();
+  return added;
 }
 
 template <int d>

@@ -135,6 +135,10 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
         p = loose;
       }
     }
+    if (problem.refine() && alpha < options.min_step) {
+      m.reusable = false;
+      continue;
+    }
     if (alpha < options.min_step) {
       if (!exact) {
         stats.message = "the line search found no acceptable step";

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,10 @@ struct MorphResult {
   bool converged = false;
   std::string message;
   long long outer = 0, nonlinear = 0, newton = 0, linear = 0, krylov = 0;
+  /// Cells whose distortion is also measured at their validity samples, so far in this
+  /// Morpher's life: those that failed the dense validity test in a line search
+  /// (energy/validity_guard.h).
+  std::size_t guarded_cells = 0;
   std::vector<MorphIteration> history;
 };
 

@@ -24,6 +24,11 @@ class NewtonProblem {
   virtual bool admissible(const Eigen::VectorXd& /*p*/, double /*alpha*/) { return true; }
   /// Moves the iterate to x + α p.
   virtual void accept(const Eigen::VectorXd& p, double alpha) = 0;
+  /// Called after each line search: the problem may change its energy in the light of the
+  /// trials that admissible() rejected (morph guards the cells that blocked them,
+  /// energy/validity_guard.h). True when it did; a search that found no step is then tried
+  /// again on the new energy.
+  virtual bool refine() { return false; }
 };
 
 /// Diagonal blocks of a Hessian over the free DOFs: block b covers the consecutive DOFs

@@ -7,6 +7,7 @@
 
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/energy/boundary_penalty.h"
+#include "meshmorph/energy/validity_guard.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/solve/newton.h"
 
@@ -48,6 +49,11 @@ class MorphProblem final : public NewtonProblem {
   double trial_value(const Eigen::VectorXd& p, double alpha) override;
   bool admissible(const Eigen::VectorXd& p, double alpha) override;
   void accept(const Eigen::VectorXd& p, double alpha) override;
+  /// Guards the cells that failed the dense validity test in the last line search (their
+  /// distortion at the validity samples joins the energy, energy/validity_guard.h).
+  bool refine() override;
+  /// Number of guarded cells.
+  std::size_t guarded_cells() const { return guard_.size(); }
 
  private:
   const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
@@ -60,6 +66,8 @@ class MorphProblem final : public NewtonProblem {
   std::unique_ptr<Metric<d>> metric_;
   BoundaryMass mass_;
   std::unique_ptr<BoundaryPenalty<d>> penalty_;
+  ValidityGuard<d> guard_;
+  std::vector<std::size_t> blocking_;  // cells (global) that failed admissible() since the last refine()
   std::vector<std::int32_t> penalty_slot_;  // node → index in the penalty, -1
   std::vector<double> weights_, volumes_;
   double reference_energy_ = 0.0, length_scale_ = 1.0;
