@@ -83,7 +83,97 @@ Csr multiply_rows(const RowsView& A, const Csr& B, int threads) {
   return C;
 }
 
+// C's values for C's pattern, which holds every entry of A B: one pass, no counting or sorting.
+void multiply_values_rows(const RowsView& A, const Csr& B, Csr& C, int threads) {
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> slot(static_cast<std::size_t>(B.cols), -1);
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < A.rows; ++i) {
+      for (int k = C.ptr[i]; k < C.ptr[i + 1]; ++k) {
+        slot[C.idx[k]] = k;
+        C.val[k] = 0.0;
+      }
+      for (int ka = A.ptr[i]; ka < A.ptr[i + 1]; ++ka) {
+        const int j = A.idx[ka];
+        const double a = A.val[ka];
+        for (int kb = B.ptr[j]; kb < B.ptr[j + 1]; ++kb) C.val[slot[B.idx[kb]]] += a * B.val[kb];
+      }
+    }
+  }
+}
+
+// The same for A, B and C with block rows of size N (block_rows_of): C_IK = Σ_J A_IJ B_JK in
+// N×N blocks, one slot lookup and N³ multiply-adds a pair of blocks instead of N² lookups.
+template <int N>
+void multiply_values_blocks(const RowsView& A, const Csr& B, Csr& C, int threads) {
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> slot(static_cast<std::size_t>(B.cols / N), -1);
+#pragma omp for schedule(dynamic, 64)
+    for (int I = 0; I < A.rows / N; ++I) {
+      const int c0 = C.ptr[I * N], cw = C.ptr[I * N + 1] - c0;
+      double* crow[N];
+      for (int r = 0; r < N; ++r) {
+        crow[r] = C.val.data() + C.ptr[I * N + r];
+        std::fill_n(crow[r], cw, 0.0);
+      }
+      for (int k = 0; k < cw; k += N) slot[C.idx[c0 + k] / N] = k;
+      const int a0 = A.ptr[I * N], aw = A.ptr[I * N + 1] - a0;
+      for (int ka = 0; ka < aw; ka += N) {
+        double a[N][N];
+        for (int r = 0; r < N; ++r)
+          for (int m = 0; m < N; ++m) a[r][m] = A.val[A.ptr[I * N + r] + ka + m];
+        const int J = A.idx[a0 + ka] / N;
+        const int b0 = B.ptr[J * N], bw = B.ptr[J * N + 1] - b0;
+        const double* brow[N];
+        for (int m = 0; m < N; ++m) brow[m] = B.val.data() + B.ptr[J * N + m];
+        for (int kb = 0; kb < bw; kb += N) {
+          const int off = slot[B.idx[b0 + kb] / N];
+          for (int r = 0; r < N; ++r)
+            for (int c = 0; c < N; ++c) {
+              double s = 0.0;
+              for (int m = 0; m < N; ++m) s += a[r][m] * brow[m][kb + c];
+              crow[r][off + c] += s;
+            }
+        }
+      }
+    }
+  }
+}
+
+void multiply_values_of(const RowsView& A, const Csr& B, Csr& C, int block, int threads) {
+  if (block == 3) return multiply_values_blocks<3>(A, B, C, threads);
+  if (block == 2) return multiply_values_blocks<2>(A, B, C, threads);
+  multiply_values_rows(A, B, C, threads);
+}
+
+// has_block_rows over any compressed rows (square or not).
+bool block_rows_of(const RowsView& A, int b) {
+  if (b < 2 || A.rows % b != 0 || A.cols % b != 0) return false;
+  for (int I = 0; I < A.rows / b; ++I) {
+    const int first = A.ptr[I * b], width = A.ptr[I * b + 1] - first;
+    if (width % b != 0) return false;
+    for (int r = 1; r < b; ++r) {
+      const int row = A.ptr[I * b + r];
+      if (A.ptr[I * b + r + 1] - row != width || !std::equal(A.idx + first, A.idx + first + width, A.idx + row))
+        return false;
+    }
+    for (int k = 0; k < width; k += b)
+      for (int c = 1; c < b; ++c)
+        if (A.idx[first + k + c] != A.idx[first + k] + c || A.idx[first + k] % b != 0) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads) {
+  multiply_values_of(rows_of(A), B, C, block, threads);
+}
+void multiply_values(const Csr& A, const Csr& B, Csr& C, int block, int threads) {
+  multiply_values_of(rows_of(A), B, C, block, threads);
+}
 
 void spmv(const SparseView& A, const double* x, double* y, int threads) { spmv_rows(rows_of(A), x, y, threads); }
 void spmv(const Csr& A, const double* x, double* y, int threads) { spmv_rows(rows_of(A), x, y, threads); }
@@ -97,37 +187,23 @@ void residual(const SparseView& A, const double* b, const double* x, double* r, 
   }
 }
 
-bool has_block_rows(const SparseView& A, int b) {
-  if (b < 2 || A.n % b != 0) return false;
-  for (int I = 0; I < A.n / b; ++I) {
-    const int first = A.outer[I * b], width = A.outer[I * b + 1] - first;
-    if (width % b != 0) return false;
-    for (int r = 1; r < b; ++r) {
-      const int row = A.outer[I * b + r];
-      if (A.outer[I * b + r + 1] - row != width || !std::equal(A.inner + first, A.inner + first + width, A.inner + row))
-        return false;
-    }
-    for (int k = 0; k < width; k += b)
-      for (int c = 1; c < b; ++c)
-        if (A.inner[first + k + c] != A.inner[first + k] + c || A.inner[first + k] % b != 0) return false;
-  }
-  return true;
-}
+bool has_block_rows(const SparseView& A, int b) { return block_rows_of(rows_of(A), b); }
+bool has_block_rows(const Csr& A, int b) { return block_rows_of(rows_of(A), b); }
 
 namespace {
 
 // y = (b or 0) + s·A x over the node rows of a matrix with B×B block rows: the column of a
 // block comes from the node's first row, its values from each of the node's rows.
 template <int B>
-void block_rows(const SparseView& A, const double* b, const double* x, double* y, double s, int threads) {
+void block_rows(const RowsView& A, const double* b, const double* x, double* y, double s, int threads) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (int I = 0; I < A.n / B; ++I) {
-    const int first = A.outer[I * B], width = A.outer[I * B + 1] - first;
+  for (int I = 0; I < A.rows / B; ++I) {
+    const int first = A.ptr[I * B], width = A.ptr[I * B + 1] - first;
     const double* row[B];
-    for (int r = 0; r < B; ++r) row[r] = A.values + A.outer[I * B + r];
+    for (int r = 0; r < B; ++r) row[r] = A.val + A.ptr[I * B + r];
     double acc[B] = {};
     for (int k = 0; k < width; k += B) {
-      const double* xj = x + A.inner[first + k];
+      const double* xj = x + A.idx[first + k];
       for (int r = 0; r < B; ++r)
         for (int c = 0; c < B; ++c) acc[r] += row[r][k + c] * xj[c];
     }
@@ -138,14 +214,20 @@ void block_rows(const SparseView& A, const double* b, const double* x, double* y
 }  // namespace
 
 void spmv(const SparseView& A, int block, const double* x, double* y, int threads) {
-  if (block == 3) return block_rows<3>(A, nullptr, x, y, 1.0, threads);
-  if (block == 2) return block_rows<2>(A, nullptr, x, y, 1.0, threads);
+  if (block == 3) return block_rows<3>(rows_of(A), nullptr, x, y, 1.0, threads);
+  if (block == 2) return block_rows<2>(rows_of(A), nullptr, x, y, 1.0, threads);
+  spmv(A, x, y, threads);
+}
+
+void spmv(const Csr& A, int block, const double* x, double* y, int threads) {
+  if (block == 3) return block_rows<3>(rows_of(A), nullptr, x, y, 1.0, threads);
+  if (block == 2) return block_rows<2>(rows_of(A), nullptr, x, y, 1.0, threads);
   spmv(A, x, y, threads);
 }
 
 void residual(const SparseView& A, int block, const double* b, const double* x, double* r, int threads) {
-  if (block == 3) return block_rows<3>(A, b, x, r, -1.0, threads);
-  if (block == 2) return block_rows<2>(A, b, x, r, -1.0, threads);
+  if (block == 3) return block_rows<3>(rows_of(A), b, x, r, -1.0, threads);
+  if (block == 2) return block_rows<2>(rows_of(A), b, x, r, -1.0, threads);
   residual(A, b, x, r, threads);
 }
 

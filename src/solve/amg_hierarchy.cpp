@@ -3,39 +3,69 @@
 #include <cmath>
 #include <cstdint>
 
+#include <Eigen/Eigenvalues>
+
 #include "solve/detail/amg.h"
 
 namespace meshmorph::detail {
 namespace {
 
-// ρ(D⁻¹A) by power iteration on D⁻¹A, reported as the Rayleigh quotient vᵀAv / vᵀDv (the
-// quotient of the symmetric D^{-1/2} A D^{-1/2}, a lower bound that converges from below).
-double spectral_radius_estimate(const SparseView& A, const std::vector<double>& inv_diag, int iterations,
+// ρ(D⁻¹A), the largest eigenvalue of the symmetric B = D^{-1/2} A D^{-1/2}, as the largest
+// Ritz value of `iterations` Lanczos steps on B: a lower bound, like a power iteration's
+// Rayleigh quotient, but converging much faster where the spectrum has a large cluster below
+// its top. After a penalty jump (a quarter of the rows ×1e6, whose part of B is ≈ I) twelve
+// power iterations underestimated ρ so far that the Chebyshev smoother amplified the top
+// modes and the V-cycle was no longer positive definite (AmgHierarchy tests).
+double spectral_radius_estimate(const SparseView& A, int block, const std::vector<double>& inv_diag, int iterations,
                                 int threads) {
   const int n = A.n;
-  std::vector<double> v(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
+  std::vector<double> q(static_cast<std::size_t>(n)), previous(static_cast<std::size_t>(n), 0.0),
+      u(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n)), scale(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) scale[i] = std::sqrt(inv_diag[i]);
   std::uint64_t state = 0x9E3779B97F4A7C15ull;  // fixed seed: deterministic set-up
-  for (double& e : v) {
+  for (double& e : q) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     e = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
   }
-  double rho = 0.0;
-  for (int it = 0; it < iterations; ++it) {
-    spmv(A, v.data(), w.data(), threads);
-    double vAv = 0.0, vDv = 0.0, ww = 0.0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : vAv, vDv, ww)
-    for (int i = 0; i < n; ++i) {
-      vAv += v[i] * w[i];
-      vDv += v[i] * v[i] / inv_diag[i];
-      w[i] *= inv_diag[i];
-      ww += w[i] * w[i];
-    }
-    rho = vAv / vDv;
-    const double scale = 1.0 / std::sqrt(ww);
+  const double q_norm = std::sqrt(dot(q.data(), q.data(), n, threads));
+  for (double& e : q) e /= q_norm;
+  Eigen::VectorXd alpha(iterations), beta(iterations);
+  int steps = 0;
+  double beta_prev = 0.0;
+  for (; steps < iterations; ++steps) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (int i = 0; i < n; ++i) v[i] = w[i] * scale;
+    for (int i = 0; i < n; ++i) u[i] = scale[i] * q[i];
+    spmv(A, block, u.data(), w.data(), threads);
+    double a = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : a)
+    for (int i = 0; i < n; ++i) {
+      w[i] = scale[i] * w[i] - beta_prev * previous[i];
+      a += q[i] * w[i];
+    }
+    double b2 = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : b2)
+    for (int i = 0; i < n; ++i) {
+      w[i] -= a * q[i];
+      b2 += w[i] * w[i];
+    }
+    alpha[steps] = a;
+    beta[steps] = std::sqrt(b2);
+    if (!(beta[steps] > 1e-12 * std::abs(a))) {  // an invariant subspace: T's spectrum is B's there
+      ++steps;
+      break;
+    }
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (int i = 0; i < n; ++i) {
+      previous[i] = q[i];
+      q[i] = w[i] / beta[steps];
+    }
+    beta_prev = beta[steps];
   }
-  return rho;
+  if (steps == 0) return 0.0;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
+  const Eigen::VectorXd diagonal = alpha.head(steps), sub = beta.head(std::max(0, steps - 1));
+  tridiagonal.computeFromTridiagonal(diagonal, sub, Eigen::EigenvaluesOnly);
+  return tridiagonal.eigenvalues().maxCoeff();
 }
 
 }  // namespace
@@ -80,7 +110,9 @@ void AmgHierarchy::build_given_level(std::vector<double>& weights) {
   L.P = first_;
   L.R = transpose(L.P, threads);
   Level next;
-  next.own = multiply(L.R, multiply(L.A, L.P, threads), threads);
+  L.AP = multiply(L.A, L.P, threads);
+  L.product_block = product_block(L);
+  next.own = multiply(L.R, L.AP, threads);
   const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
   next.block = b;
   levels_.push_back(std::move(next));
@@ -93,6 +125,23 @@ bool AmgHierarchy::rebind(const SparseView& A) {
   if (levels_.empty() || A.n != levels_[0].A.n || levels_.size() == 1) return false;  // one level: A is the coarse factor's
   levels_[0].A = A;
   return prepare_level(levels_[0]);
+}
+
+bool AmgHierarchy::refresh(const SparseView& A) {
+  if (!rebind(A)) return false;
+  const int threads = std::max(1, options_.threads);
+  for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
+    Level& L = levels_[l];
+    multiply_values(L.A, L.P, L.AP, L.product_block, threads);
+    multiply_values(L.R, L.AP, levels_[l + 1].own, L.product_block, threads);
+    if (!prepare_level(levels_[l + 1])) return false;
+  }
+  return coarse_.factorize(levels_.back().A);
+}
+
+int AmgHierarchy::product_block(const Level& L) {
+  const int b = L.block;
+  return L.row_block == b && has_block_rows(L.P, b) && has_block_rows(L.R, b) && has_block_rows(L.AP, b) ? b : 1;
 }
 
 bool AmgHierarchy::prepare_level(Level& L) {
@@ -111,7 +160,7 @@ bool AmgHierarchy::prepare_level(Level& L) {
     L.inv_diag[i] = a > 0.0 ? 1.0 / a : 0.0;
   }
   if (!positive) return false;
-  L.rho = spectral_radius_estimate(L.A, L.inv_diag, options_.power_iterations, threads);
+  L.rho = spectral_radius_estimate(L.A, L.row_block, L.inv_diag, options_.lanczos_steps, threads);
   for (auto* v : {&L.x, &L.b, &L.r, &L.d}) v->assign(static_cast<std::size_t>(n), 0.0);
   return true;
 }
@@ -155,9 +204,10 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
     }
   }
   L.R = transpose(L.P, threads);
-  Csr AP = multiply(A, L.P, threads);
+  L.AP = multiply(A, L.P, threads);
+  L.product_block = product_block(L);
   Level next;
-  next.own = multiply(L.R, AP, threads);
+  next.own = multiply(L.R, L.AP, threads);
   next.block = b;
   levels_.push_back(std::move(next));
   levels_.back().A = levels_.back().own.view();
@@ -205,9 +255,9 @@ void AmgHierarchy::cycle(std::size_t l) {
   Level& C = levels_[l + 1];
   smooth(L, true);
   residual_of(L);
-  spmv(L.R, L.r.data(), C.b.data(), threads);
+  spmv(L.R, L.product_block, L.r.data(), C.b.data(), threads);
   cycle(l + 1);
-  spmv(L.P, C.x.data(), L.d.data(), threads);
+  spmv(L.P, L.product_block, C.x.data(), L.d.data(), threads);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < L.A.n; ++i) L.x[i] += L.d[i];
   smooth(L, false);

@@ -39,10 +39,11 @@ bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   A_ = view_of(A);
   nnz_ = A_.nnz();
   if (A_.n == 0) return ready_ = true;
-  // The coarse levels of the last full set-up serve matrices of the same pattern until CG
-  // needs twice the iterations per digit that it needed right after that set-up (Newton
-  // steps change the Hessian little; a jump of the penalty or a failure triggers a rebuild).
-  if (same_pattern && !rebuild_ && amg_.rebind(A_)) return ready_ = true;
+  // The prolongators of the last full set-up serve matrices of the same pattern, with their
+  // coarse operators recomputed (refresh), until CG needs twice the iterations per digit that
+  // it needed right after that set-up (Newton steps change the Hessian little; a jump of the
+  // penalty or a failure triggers a rebuild).
+  if (same_pattern && !rebuild_ && amg_.refresh(A_)) return ready_ = true;
   built_ = ready_ = amg_.setup(A_);
   rebuild_ = false;
   base_cost_ = -1.0;

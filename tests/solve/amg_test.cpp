@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "solve/detail/amg.h"
 
+#include <random>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -129,6 +130,126 @@ TEST(AmgCsr, BlockRowProductsMatchTheScalarOnes) {
   Eigen::SparseMatrix<double> L = test::stiffness_matrix(3, 6, false);
   L.makeCompressed();
   EXPECT_FALSE(detail::has_block_rows(detail::view_of(L), 3));
+}
+
+// A random rows × 3m matrix of whole dim×dim blocks, two per node row, as a prolongator is.
+detail::Csr random_block_prolongator(int rows, int coarse_nodes, int dim, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> node(0, coarse_nodes - 1);
+  detail::Csr P;
+  P.rows = rows;
+  P.cols = dim * coarse_nodes;
+  for (int I = 0; I < rows / dim; ++I) {
+    int a = node(rng), b = node(rng);
+    if (a == b) b = (a + 1) % coarse_nodes;
+    if (a > b) std::swap(a, b);
+    for (int r = 0; r < dim; ++r) {
+      for (int J : {a, b})
+        for (int c = 0; c < dim; ++c) {
+          P.idx.push_back(dim * J + c);
+          P.val.push_back(u(rng));
+        }
+      P.ptr.push_back(static_cast<int>(P.idx.size()));
+    }
+  }
+  return P;
+}
+
+// Products recomputed for new values of the same patterns: the values of a fresh product, by
+// the scalar route and (all three matrices of whole blocks) the block route; the block
+// products of prolongators as the scalar ones.
+TEST(AmgCsr, ProductValuesOfKnownPatternsMatchAFreshProduct) {
+  for (int dim : {2, 3}) {
+    SCOPED_TRACE(dim);
+    Eigen::SparseMatrix<double> A = test::stiffness_matrix(dim, 5, true);
+    A.makeCompressed();
+    const detail::SparseView view = detail::view_of(A);
+    const detail::Csr P = random_block_prolongator(static_cast<int>(A.rows()), 7, dim, 5);
+    ASSERT_TRUE(detail::has_block_rows(P, dim));
+    detail::Csr AP = detail::multiply(view, P, 2);
+    const detail::Csr R = detail::transpose(P, 2);
+    detail::Csr RAP = detail::multiply(R, AP, 2);
+    ASSERT_TRUE(detail::has_block_rows(AP, dim) && detail::has_block_rows(R, dim) && detail::has_block_rows(RAP, dim));
+    // New values: A's rows scaled (its pattern kept), the fresh products of them.
+    Eigen::SparseMatrix<double> B = A;
+    for (Eigen::Index k = 0; k < B.nonZeros(); ++k) B.valuePtr()[k] *= 1.0 + 0.3 * std::sin(static_cast<double>(k));
+    const detail::SparseView view_b = detail::view_of(B);
+    const detail::Csr fresh_ap = detail::multiply(view_b, P, 2);
+    const detail::Csr fresh_rap = detail::multiply(R, fresh_ap, 2);
+    for (int block : {1, dim}) {
+      SCOPED_TRACE(block);
+      detail::multiply_values(view_b, P, AP, block, 2);
+      detail::multiply_values(R, AP, RAP, block, 2);
+      ASSERT_EQ(AP.idx, fresh_ap.idx);
+      ASSERT_EQ(RAP.idx, fresh_rap.idx);
+      for (std::size_t k = 0; k < AP.val.size(); ++k) EXPECT_NEAR(AP.val[k], fresh_ap.val[k], 1e-13 * (1 + std::abs(fresh_ap.val[k])));
+      for (std::size_t k = 0; k < RAP.val.size(); ++k)
+        EXPECT_NEAR(RAP.val[k], fresh_rap.val[k], 1e-13 * (1 + std::abs(fresh_rap.val[k])));
+    }
+    const Eigen::VectorXd x = test::random_vector(P.cols, 7), y = test::random_vector(P.rows, 8);
+    Eigen::VectorXd scalar(P.rows), blocked(P.rows), rs(R.rows), rb(R.rows);
+    detail::spmv(P, x.data(), scalar.data(), 2);
+    detail::spmv(P, dim, x.data(), blocked.data(), 2);
+    EXPECT_LE((scalar - blocked).norm(), 1e-14 * scalar.norm());
+    detail::spmv(R, y.data(), rs.data(), 2);
+    detail::spmv(R, dim, y.data(), rb.data(), 2);
+    EXPECT_LE((rs - rb).norm(), 1e-14 * rs.norm());
+  }
+}
+
+// refresh() recomputes the coarse operators of a new matrix through the kept prolongators:
+// right after setup() it changes nothing (the same V-cycle to rounding), and for a matrix
+// whose rows near the boundary jumped by 1e6 (a penalty increase) CG needs the iterations of
+// a fresh set-up, where the old coarse operators (rebind) cost several times more.
+TEST(AmgHierarchy, RefreshGivesTheCoarseOperatorsOfTheNewMatrix) {
+  const Eigen::SparseMatrix<double> A = test::energy_hessian<3>(1, 10);
+  detail::AmgOptions options;
+  options.block_size = 3;
+  options.coarse_size = 50;
+
+  detail::AmgHierarchy amg(options);
+  ASSERT_TRUE(amg.setup(detail::view_of(A)));
+  const Eigen::VectorXd r = test::random_vector(A.rows(), 9);
+  Eigen::VectorXd before(A.rows()), after(A.rows());
+  amg.apply(r.data(), before.data());
+  ASSERT_TRUE(amg.refresh(detail::view_of(A)));
+  amg.apply(r.data(), after.data());
+  EXPECT_LE((before - after).norm(), 1e-12 * before.norm());
+
+  Eigen::SparseMatrix<double> C = A;
+  for (Eigen::Index i = 0; i < C.rows() / 4; ++i) C.coeffRef(i, i) *= 1e6;
+  C.makeCompressed();
+  const Eigen::VectorXd b = test::random_vector(C.rows(), 4);
+  // PCG iterations to 1e-8 with the hierarchy as it is now.
+  const auto iterations = [&](detail::AmgHierarchy& M) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(C.rows()), res = b, z(C.rows());
+    M.apply(res.data(), z.data());
+    Eigen::VectorXd p = z;
+    double rz = res.dot(z);
+    int it = 0;
+    while (res.norm() > 1e-8 * b.norm() && it < 200) {
+      const Eigen::VectorXd q = C * p;
+      const double alpha = rz / p.dot(q);
+      x += alpha * p;
+      res -= alpha * q;
+      M.apply(res.data(), z.data());
+      const double rz_new = res.dot(z);
+      p = z + (rz_new / rz) * p;
+      rz = rz_new;
+      ++it;
+    }
+    return it;
+  };
+  ASSERT_TRUE(amg.rebind(detail::view_of(C)));
+  const int rebound = iterations(amg);
+  ASSERT_TRUE(amg.refresh(detail::view_of(C)));
+  const int refreshed = iterations(amg);
+  detail::AmgHierarchy fresh(options);
+  ASSERT_TRUE(fresh.setup(detail::view_of(C)));
+  const int set_up = iterations(fresh);
+  EXPECT_LE(refreshed, set_up + set_up / 2 + 2);
+  EXPECT_GT(rebound, 2 * refreshed);
 }
 
 TEST(AmgHierarchy, NonPositiveDiagonalIsNotPositiveDefinite) {

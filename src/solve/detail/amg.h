@@ -16,8 +16,8 @@ struct AmgOptions {
   double strength = 0.08;    ///< θ of ‖A_IJ‖ ≥ θ √(‖A_II‖‖A_JJ‖) at level 0, halved per level
   int smoother_degree = 2;   ///< Chebyshev polynomial degree of D⁻¹A (pre and post)
   double smoother_ratio = 10.0;  ///< the Chebyshev interval is [λ/ratio, λ], λ = upper_factor·ρ̃
-  double upper_factor = 1.1;     ///< safety factor on the power-iteration estimate ρ̃ of ρ(D⁻¹A)
-  int power_iterations = 12;
+  double upper_factor = 1.1;     ///< safety factor on the Lanczos estimate ρ̃ of ρ(D⁻¹A)
+  int lanczos_steps = 12;        ///< steps of that estimate
   int threads = 1;
 };
 
@@ -42,6 +42,13 @@ class AmgHierarchy {
   /// levels built for the old one (a cheaper, slightly weaker preconditioner). False when A
   /// has a diagonal entry ≤ 0 or there is no hierarchy of its size.
   bool rebind(const SparseView& A);
+  /// rebind(), then the coarse operators of A through the prolongators of the last setup():
+  /// A_{l+1} = R_l A_l P_l, products of known patterns (values only), and the coarsest
+  /// factor. A new Newton matrix keeps most of what a setup() gives it (on the §5.2 shells
+  /// half the CG iterations of rebind()) at a fraction of its cost: no aggregation, no
+  /// smoothing of P, no symbolic products. False as rebind(), or when a coarse operator is
+  /// found not positive definite.
+  bool refresh(const SparseView& A);
   /// z = M⁻¹ r, one V-cycle from a zero initial guess (z and r must not alias).
   void apply(const double* r, double* z);
   /// y = A x with the finest operator as it is now (its values may have changed in place).
@@ -60,6 +67,8 @@ class AmgHierarchy {
     SparseView A;    // the operator (level 0: the caller's matrix; else `own`)
     Csr own;
     Csr P, R;        // prolongator to this level from the next, and its transpose
+    Csr AP;          // A P, whose pattern refresh() refills
+    int product_block = 1;  // block of A, P, R and AP where all four have block rows, else 1
     std::vector<double> inv_diag;
     double rho = 0.0;
     int block = 1;
@@ -68,6 +77,7 @@ class AmgHierarchy {
   };
   // Block rows, inverse diagonal (false if an entry is ≤ 0), ρ estimate, work vectors.
   bool prepare_level(Level& L);
+  static int product_block(const Level& L);  // Level::product_block of a level with P, R, AP built
   void residual_of(Level& L) const;  // L.r = L.b − A L.x
   bool build_level(std::size_t l, std::vector<double>& weights);
   void build_given_level(std::vector<double>& weights);  // level 1 through first_

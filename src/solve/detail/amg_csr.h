@@ -23,6 +23,7 @@ struct Csr {
 /// Whether A's rows come in groups of b (a node's unknowns) that share one sorted pattern
 /// made of whole b-column blocks (a neighbour's unknowns): what the `block` products need.
 bool has_block_rows(const SparseView& A, int b);
+bool has_block_rows(const Csr& A, int b);
 /// y = A x over the rows of A (OpenMP, `threads` threads, static schedule).
 void spmv(const SparseView& A, const double* x, double* y, int threads);
 void spmv(const Csr& A, const double* x, double* y, int threads);
@@ -32,6 +33,7 @@ void residual(const SparseView& A, const double* b, const double* x, double* r, 
 /// A node's rows read each column index once for all of them: a third less memory traffic
 /// for 3D Hessians, the multigrid cycle's bottleneck.
 void spmv(const SparseView& A, int block, const double* x, double* y, int threads);
+void spmv(const Csr& A, int block, const double* x, double* y, int threads);
 void residual(const SparseView& A, int block, const double* b, const double* x, double* r, int threads);
 /// Aᵀ (rows become columns), sorted.
 Csr transpose(const Csr& A, int threads);
@@ -39,6 +41,12 @@ Csr transpose(const Csr& A, int threads);
 /// given as a view of a square matrix or a Csr; B is k × m.
 Csr multiply(const SparseView& A, const Csr& B, int threads);
 Csr multiply(const Csr& A, const Csr& B, int threads);
+/// C = A B again for new values of A or B of the same patterns: C keeps the pattern of the
+/// multiply() that made it and only its values are recomputed. With block > 1, A, B and C
+/// must all have block rows of that size (has_block_rows), and the product goes block by
+/// block.
+void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads);
+void multiply_values(const Csr& A, const Csr& B, Csr& C, int block, int threads);
 
 double dot(const double* a, const double* b, int n, int threads);
 
