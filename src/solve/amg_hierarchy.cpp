@@ -3,69 +3,39 @@
 #include <cmath>
 #include <cstdint>
 
-#include <Eigen/Eigenvalues>
-
 #include "solve/detail/amg.h"
 
 namespace meshmorph::detail {
 namespace {
 
-// ρ(D⁻¹A), the largest eigenvalue of the symmetric B = D^{-1/2} A D^{-1/2}, as the largest
-// Ritz value of `iterations` Lanczos steps on B: a lower bound, like a power iteration's
-// Rayleigh quotient, but converging much faster where the spectrum has a large cluster below
-// its top. After a penalty jump (a quarter of the rows ×1e6, whose part of B is ≈ I) twelve
-// power iterations underestimated ρ so far that the Chebyshev smoother amplified the top
-// modes and the V-cycle was no longer positive definite (AmgHierarchy tests).
+// ρ(D⁻¹A) by power iteration on D⁻¹A, reported as the Rayleigh quotient vᵀAv / vᵀDv (the
+// quotient of the symmetric D^{-1/2} A D^{-1/2}, a lower bound that converges from below).
 double spectral_radius_estimate(const SparseView& A, int block, const std::vector<double>& inv_diag, int iterations,
                                 int threads) {
   const int n = A.n;
-  std::vector<double> q(static_cast<std::size_t>(n)), previous(static_cast<std::size_t>(n), 0.0),
-      u(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n)), scale(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) scale[i] = std::sqrt(inv_diag[i]);
+  std::vector<double> v(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
   std::uint64_t state = 0x9E3779B97F4A7C15ull;  // fixed seed: deterministic set-up
-  for (double& e : q) {
+  for (double& e : v) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     e = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
   }
-  const double q_norm = std::sqrt(dot(q.data(), q.data(), n, threads));
-  for (double& e : q) e /= q_norm;
-  Eigen::VectorXd alpha(iterations), beta(iterations);
-  int steps = 0;
-  double beta_prev = 0.0;
-  for (; steps < iterations; ++steps) {
+  double rho = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    spmv(A, block, v.data(), w.data(), threads);
+    double vAv = 0.0, vDv = 0.0, ww = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : vAv, vDv, ww)
+    for (int i = 0; i < n; ++i) {
+      vAv += v[i] * w[i];
+      vDv += v[i] * v[i] / inv_diag[i];
+      w[i] *= inv_diag[i];
+      ww += w[i] * w[i];
+    }
+    rho = vAv / vDv;
+    const double scale = 1.0 / std::sqrt(ww);
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (int i = 0; i < n; ++i) u[i] = scale[i] * q[i];
-    spmv(A, block, u.data(), w.data(), threads);
-    double a = 0.0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : a)
-    for (int i = 0; i < n; ++i) {
-      w[i] = scale[i] * w[i] - beta_prev * previous[i];
-      a += q[i] * w[i];
-    }
-    double b2 = 0.0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : b2)
-    for (int i = 0; i < n; ++i) {
-      w[i] -= a * q[i];
-      b2 += w[i] * w[i];
-    }
-    alpha[steps] = a;
-    beta[steps] = std::sqrt(b2);
-    if (!(beta[steps] > 1e-12 * std::abs(a))) {  // an invariant subspace: T's spectrum is B's there
-      ++steps;
-      break;
-    }
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (int i = 0; i < n; ++i) {
-      previous[i] = q[i];
-      q[i] = w[i] / beta[steps];
-    }
-    beta_prev = beta[steps];
+    for (int i = 0; i < n; ++i) v[i] = w[i] * scale;
   }
-  if (steps == 0) return 0.0;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
-  const Eigen::VectorXd diagonal = alpha.head(steps), sub = beta.head(std::max(0, steps - 1));
-  tridiagonal.computeFromTridiagonal(diagonal, sub, Eigen::EigenvaluesOnly);
-  return tridiagonal.eigenvalues().maxCoeff();
+  return rho;
 }
 
 }  // namespace
@@ -150,17 +120,20 @@ bool AmgHierarchy::prepare_level(Level& L) {
   // Checked at every rebind too: a new matrix of the same size may have another pattern.
   L.row_block = has_block_rows(L.A, L.block) ? L.block : 1;
   L.inv_diag.assign(static_cast<std::size_t>(n), 0.0);
+  L.inv_l1.assign(static_cast<std::size_t>(n), 0.0);
   bool positive = true;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : positive)
   for (int i = 0; i < n; ++i) {
-    double a = 0.0;
-    for (int k = L.A.outer[i]; k < L.A.outer[i + 1]; ++k)
+    double a = 0.0, l1 = 0.0;
+    for (int k = L.A.outer[i]; k < L.A.outer[i + 1]; ++k) {
       if (L.A.inner[k] == i) a += L.A.values[k];
+      l1 += std::abs(L.A.values[k]);
+    }
     positive = positive && a > 0.0;
     L.inv_diag[i] = a > 0.0 ? 1.0 / a : 0.0;
+    L.inv_l1[i] = a > 0.0 ? 1.0 / l1 : 0.0;
   }
   if (!positive) return false;
-  L.rho = spectral_radius_estimate(L.A, L.row_block, L.inv_diag, options_.lanczos_steps, threads);
   for (auto* v : {&L.x, &L.b, &L.r, &L.d}) v->assign(static_cast<std::size_t>(n), 0.0);
   return true;
 }
@@ -193,7 +166,7 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   // Smoothed prolongator P = (I − ω D⁻¹A) T with ω = 4/(3ρ(D⁻¹A)). Row i of AT contains
   // T's single column of row i (through a_ii), so P has the pattern of AT.
   Level& L = levels_[l];
-  const double omega = 4.0 / (3.0 * L.rho);
+  const double omega = 4.0 / (3.0 * spectral_radius_estimate(A, L.row_block, L.inv_diag, options_.power_iterations, threads));
   L.P = multiply(A, T, threads);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < A.n; ++i) {
@@ -215,13 +188,17 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   return true;
 }
 
-// Chebyshev iteration for A x = b preconditioned by D on [ρ̂/ratio, ρ̂] (Saad, Iterative
-// Methods, Alg. 12.1 with M = D). The same polynomial before and after the coarse
-// correction keeps the V-cycle symmetric.
+// Chebyshev iteration for A x = b preconditioned by the ℓ1 diagonal D₁ (row sums of |A|) on
+// [1/ratio, 1] (Saad, Iterative Methods, Alg. 12.1 with M = D₁). D₁ − A is diagonally dominant,
+// so the spectrum of D₁⁻¹A lies in (0, 1]: the interval's top is a bound, not an estimate
+// (Baker, Falgout, Kolev, Yang 2011). An estimate of ρ(D⁻¹A) by a few power or Lanczos steps
+// missed localized outliers or, once it found them, left the bulk unsmoothed (the 213k
+// shell's CG iterations tripled). The same polynomial before and after the coarse correction
+// keeps the V-cycle symmetric.
 void AmgHierarchy::smooth(Level& L, bool zero_guess) {
   const int threads = std::max(1, options_.threads);
   const int n = L.A.n;
-  const double upper = options_.upper_factor * L.rho, lower = upper / options_.smoother_ratio;
+  const double upper = 1.0, lower = upper / options_.smoother_ratio;
   const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
   double rho = 1.0 / sigma;
   if (zero_guess) {
@@ -231,7 +208,7 @@ void AmgHierarchy::smooth(Level& L, bool zero_guess) {
     residual_of(L);
   }
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (int i = 0; i < n; ++i) L.d[i] = L.inv_diag[i] * L.r[i] / theta;
+  for (int i = 0; i < n; ++i) L.d[i] = L.inv_l1[i] * L.r[i] / theta;
   for (int k = 1;; ++k) {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = 0; i < n; ++i) L.x[i] += L.d[i];
@@ -240,7 +217,7 @@ void AmgHierarchy::smooth(Level& L, bool zero_guess) {
     const double rho_new = 1.0 / (2.0 * sigma - rho);
     const double c1 = rho_new * rho, c2 = 2.0 * rho_new / delta;
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (int i = 0; i < n; ++i) L.d[i] = c1 * L.d[i] + c2 * L.inv_diag[i] * L.r[i];
+    for (int i = 0; i < n; ++i) L.d[i] = c1 * L.d[i] + c2 * L.inv_l1[i] * L.r[i];
     rho = rho_new;
   }
 }

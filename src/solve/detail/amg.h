@@ -15,9 +15,8 @@ struct AmgOptions {
   int max_levels = 12;
   double strength = 0.08;    ///< θ of ‖A_IJ‖ ≥ θ √(‖A_II‖‖A_JJ‖) at level 0, halved per level
   int smoother_degree = 2;   ///< Chebyshev polynomial degree of D⁻¹A (pre and post)
-  double smoother_ratio = 10.0;  ///< the Chebyshev interval is [λ/ratio, λ], λ = upper_factor·ρ̃
-  double upper_factor = 1.1;     ///< safety factor on the Lanczos estimate ρ̃ of ρ(D⁻¹A)
-  int lanczos_steps = 12;        ///< steps of that estimate
+  double smoother_ratio = 10.0;  ///< the Chebyshev interval is [1/ratio, 1] for D₁⁻¹A (ℓ1 diagonal)
+  int power_iterations = 12;     ///< of the estimate of ρ(D⁻¹A) that smooths the prolongators
   int threads = 1;
 };
 
@@ -59,8 +58,6 @@ class AmgHierarchy {
   std::int64_t nnz(int level) const { return levels_[level].A.nnz(); }
   /// Σ nnz(A_l) / nnz(A_0).
   double operator_complexity() const;
-  /// The estimate of ρ(D⁻¹A) at a level.
-  double spectral_radius(int level) const { return levels_[level].rho; }
 
  private:
   struct Level {
@@ -69,8 +66,8 @@ class AmgHierarchy {
     Csr P, R;        // prolongator to this level from the next, and its transpose
     Csr AP;          // A P, whose pattern refresh() refills
     int product_block = 1;  // block of A, P, R and AP where all four have block rows, else 1
-    std::vector<double> inv_diag;
-    double rho = 0.0;
+    std::vector<double> inv_diag;  // 1 / a_ii
+    std::vector<double> inv_l1;    // 1 / Σ_j |a_ij|, the smoother's diagonal
     int block = 1;
     int row_block = 1;  // `block` where A has block rows (has_block_rows), else 1
     std::vector<double> x, b, r, d;
