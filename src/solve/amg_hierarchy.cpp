@@ -166,7 +166,8 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   // Smoothed prolongator P = (I − ω D⁻¹A) T with ω = 4/(3ρ(D⁻¹A)). Row i of AT contains
   // T's single column of row i (through a_ii), so P has the pattern of AT.
   Level& L = levels_[l];
-  const double omega = 4.0 / (3.0 * spectral_radius_estimate(A, L.row_block, L.inv_diag, options_.power_iterations, threads));
+  const double rho = spectral_radius_estimate(A, L.row_block, L.inv_diag, options_.power_iterations, threads);
+  const double omega = 4.0 / (3.0 * rho);
   L.P = multiply(A, T, threads);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < A.n; ++i) {

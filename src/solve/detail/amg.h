@@ -14,7 +14,7 @@ struct AmgOptions {
   int coarse_size = 500;     ///< a level with at most this many unknowns is solved by Cholesky
   int max_levels = 12;
   double strength = 0.08;    ///< θ of ‖A_IJ‖ ≥ θ √(‖A_II‖‖A_JJ‖) at level 0, halved per level
-  int smoother_degree = 2;   ///< Chebyshev polynomial degree of D⁻¹A (pre and post)
+  int smoother_degree = 2;   ///< Chebyshev polynomial degree of D₁⁻¹A (pre and post)
   double smoother_ratio = 10.0;  ///< the Chebyshev interval is [1/ratio, 1] for D₁⁻¹A (ℓ1 diagonal)
   int power_iterations = 12;     ///< of the estimate of ρ(D⁻¹A) that smooths the prolongators
   int threads = 1;
