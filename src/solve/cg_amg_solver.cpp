@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include <omp.h>
 
@@ -45,12 +43,8 @@ bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   // coarse operators recomputed (refresh), until CG needs twice the iterations per digit that
   // it needed right after that set-up (Newton steps change the Hessian little; a jump of the
   // penalty or a failure triggers a rebuild).
-  if (same_pattern && !rebuild_) {
-    if (amg_.refresh(A_)) { if (std::getenv("MM_TRACE")) std::fprintf(stderr, "refresh ok\n"); return ready_ = true; }
-    if (std::getenv("MM_TRACE")) std::fprintf(stderr, "refresh FAILED\n");
-  }
+  if (same_pattern && !rebuild_ && amg_.refresh(A_)) return ready_ = true;
   built_ = ready_ = amg_.setup(A_);
-  if (std::getenv("MM_TRACE")) std::fprintf(stderr, "setup (same %d rebuild %d) -> %d\n", same_pattern, rebuild_, ready_);
   rebuild_ = false;
   base_cost_ = -1.0;
   return ready_;
@@ -100,7 +94,6 @@ LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& 
 
 LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
   const LinearSolveStats stats = cg(b, x, rtol);
-  if (std::getenv("MM_TRACE")) std::fprintf(stderr, "cg: %d its, rtol %.0e, res %.2e, ok %d indef %d %s\n", stats.iterations, rtol, stats.relative_residual, stats.ok, stats.indefinite, stats.message.c_str());
   track(stats);
   return stats;
 }

@@ -72,7 +72,7 @@ class AmgHierarchy {
     int row_block = 1;  // `block` where A has block rows (has_block_rows), else 1
     std::vector<double> x, b, r, d;
   };
-  // Block rows, inverse diagonal (false if an entry is ≤ 0), ρ estimate, work vectors.
+  // Block rows, inverse diagonal and ℓ1 diagonal (false if a diagonal entry is ≤ 0), work vectors.
   bool prepare_level(Level& L);
   static int product_block(const Level& L);  // Level::product_block of a level with P, R, AP built
   void residual_of(Level& L) const;  // L.r = L.b − A L.x
