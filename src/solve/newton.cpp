@@ -42,6 +42,12 @@ double newton_direction(LinearSolver& solver, Eigen::SparseMatrix<double>& H, co
   return -1.0;
 }
 
+// Whether a predicted decrease ½gᵀH⁻¹g is below what the energy resolves (a few ulps of |E|;
+// a penalised, weighted energy may be 1e8 times its tolerance's reference).
+bool below_resolution(double decrement, double value) {
+  return decrement <= 16.0 * std::numeric_limits<double>::epsilon() * std::abs(value);
+}
+
 }  // namespace
 
 NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOptions& options, NewtonMemory* memory) {
@@ -134,6 +140,13 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       } else {
         p = loose;
       }
+    }
+    // A step cut short where the decrease it predicts is below the energy's resolution: the
+    // line search measures round-off, and more steps cannot improve the iterate measurably
+    // (full steps go on: exact gradients still gain digits there).
+    if (alpha < 1.0 && below_resolution(stats.decrement, a.value)) {
+      stats.converged = true;
+      return stats;
     }
     if (problem.refine() && alpha < options.min_step) {
       m.reusable = false;

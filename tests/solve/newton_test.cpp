@@ -67,7 +67,8 @@ class Quartic final : public NewtonProblem {
       : x(std::move(x0)), s_(s), c_(std::move(c)), barrier_(barrier) {}
   double f(const Eigen::VectorXd& y) const {
     if (y[0] <= barrier_) return std::numeric_limits<double>::infinity();
-    return 0.25 * (y.array().square() - 1.0).square().sum() + 0.5 * s_ * (y - c_).squaredNorm();
+    return offset + offset * noise * std::sin(1e7 * y.sum()) + 0.25 * (y.array().square() - 1.0).square().sum() +
+           0.5 * s_ * (y - c_).squaredNorm();
   }
   void evaluate(HessianMode mode, Assembly& out) override {
     ++evaluations;
@@ -76,6 +77,7 @@ class Quartic final : public NewtonProblem {
     out.gradient = gradient();
     Eigen::VectorXd diag = (3.0 * x.array().square() - 1.0 + s_).matrix();
     if (mode == HessianMode::Projected) diag = diag.cwiseMax(0.0);
+    diag *= hessian_scale;
     out.hessian.resize(x.size(), x.size());
     out.hessian.setIdentity();
     for (Eigen::Index i = 0; i < x.size(); ++i) out.hessian.coeffRef(i, i) = diag[i];
@@ -88,6 +90,11 @@ class Quartic final : public NewtonProblem {
   }
   Eigen::VectorXd x;
   int evaluations = 0, exact_evaluations = 0;
+  // A constant that the energy carries (a penalised, weighted energy's large part) and the
+  // relative round-off of its evaluation, as a deterministic pseudo-noise.
+  double offset = 0.0, noise = 0.0;
+  // A Hessian off by this factor (a stand-in for a solve that lost digits): linear convergence.
+  double hessian_scale = 1.0;
 
  private:
   double s_;
@@ -112,6 +119,23 @@ TEST(Newton, ConvergesQuadraticallyOnAStronglyConvexProblem) {
   ASSERT_TRUE(s.converged) << s.message;
   EXPECT_LT(q.gradient().norm(), 1e-13);
   EXPECT_LE(s.iterations, 8);  // quadratic convergence: a handful of steps
+}
+
+// Where the energy is 1e6 and evaluated to a few ulps, no line search can measure a decrease
+// below ~1e-9. With steps that converge only linearly Newton would cut them on round-off
+// until the line search gave up; it stops there, converged.
+TEST(Newton, StopsWhereTheEnergyCannotResolveTheDecrement) {
+  Quartic q = convex_quartic();
+  q.offset = 1e6;
+  q.noise = 4.0 * std::numeric_limits<double>::epsilon();
+  q.hessian_scale = 3.0;
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-28;
+  const NewtonStats s = newton(q, solver, o);
+  ASSERT_TRUE(s.converged) << s.message;
+  EXPECT_LE(s.decrement, 16.0 * std::numeric_limits<double>::epsilon() * (q.offset + 1.0));
+  EXPECT_LT(q.gradient().norm(), 1e-3);
 }
 
 TEST(Newton, StepsAndConfirmsConvergenceWithThePreviousFactorization) {
