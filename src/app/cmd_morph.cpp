@@ -62,6 +62,9 @@ RunSettings read_options(const CaseFile& c, int threads) {
   r.read("max_weight_updates", m.max_weight_updates, 0, 10000);
   r.read("max_newton", m.max_newton, 1, 100000);
   r.read("exact_first", m.exact_first);
+  std::string finish = "untangle";
+  r.read("finish", finish, {"untangle", "none"});
+  m.finish_by_untangle = finish == "untangle";
   r.read("stiffening", s.baseline.stiffening, 0.0, 10.0);
   r.read("poisson_ratio", s.baseline.poisson_ratio, -0.999, 0.499);
   r.finish();
@@ -93,6 +96,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   Eigen::MatrixXd x = input.x;
   long long krylov = 0;  // CG iterations, also those preconditioned by a Cholesky factor (printed, not in the report)
   std::size_t guarded = 0;  // cells guarded at their validity samples (MorphResult::guarded_cells)
+  nlohmann::ordered_json finishes = nlohmann::ordered_json::array();  // untangle passes (MorphResult::finish)
   if (settings.method == "morph") {
     Morpher morpher(input, topology, bc, settings.morph);
     IterationCounts counts;
@@ -110,6 +114,13 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
                                   {"boundary_error_max", h.boundary_error_max}, {"min_quality", h.min_quality},
                                   {"mu", h.mu}, {"nonlinear", static_cast<double>(h.nonlinear)},
                                   {"newton", static_cast<double>(h.newton)}, {"linear", static_cast<double>(h.linear)}});
+      if (r.finish) {
+        const MorphResult::Finish& f = *r.finish;
+        finishes.push_back({{"step", s}, {"stall", f.stall}, {"boundary_error_max", f.boundary_error_max},
+                            {"initial_inverted", f.initial_inverted}, {"newton", f.newton}, {"linear", f.linear},
+                            {"valid", f.valid}, {"message", f.message}});
+        if (r.converged) report.message = (c.steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) + r.message;
+      }
       if (!r.converged) {
         report.converged = false;
         report.message = (c.steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) + r.message;
@@ -141,7 +152,10 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   // writes none); the report is always written.
   detail::write_result_mesh(report, moved, q, output);
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();
-  if (settings.method == "morph") extra["guarded_cells"] = guarded;
+  if (settings.method == "morph") {
+    extra["guarded_cells"] = guarded;
+    extra["untangle_passes"] = finishes;
+  }
   if (report_path) write_report(*report_path, report, extra);
 
   out << "morph    " << a.case_file << " (" << report.method << ")\n"

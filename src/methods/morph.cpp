@@ -9,6 +9,7 @@
 #include "meshmorph/energy/boundary_penalty.h"
 #include "meshmorph/error.h"
 #include "meshmorph/log.h"
+#include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/metric_registry.h"
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/format.h"
@@ -30,7 +31,7 @@ template <int d>
 class MorphImpl final : public Morpher::Impl {
  public:
   MorphImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options)
-      : options_(options), problem_(input, topology, bc, options.threads) {
+      : options_(options), input_(&input), topology_(&topology), bc_(&bc), problem_(input, topology, bc, options.threads) {
     solver_ = detail::make_newton_solver<d>(options.solver, options.threads, input, problem_.dofs());
   }
 
@@ -59,6 +60,7 @@ class MorphImpl final : public Morpher::Impl {
     double eps = options_.eps0 * c_start;
     double delta = std::max(options_.delta0 * P.reference_energy(), delta_star);
 
+    bool stalled = false;
     NewtonOptions no;
     no.max_iterations = options_.max_newton;
     no.exact_first = options_.exact_first;
@@ -106,9 +108,12 @@ class MorphImpl final : public Morpher::Impl {
         result.converged = true;
         break;
       }
-      if (!newton_ok && outer > 1 && c > 0.5 * result.history[result.history.size() - 2].constraint_norm &&
-          penalty.mu > 1e12 * mu0_) {
-        result.message = "the nonlinear solver stalled (" + newton_message + ")";
+      // Stalled: twelve orders of penalty (six failed iterations) and the constraint no longer
+      // halves; past this the Newton systems lose their digits to the penalty's condition.
+      if (outer > 1 && c > 0.5 * result.history[result.history.size() - 2].constraint_norm && penalty.mu > 1e12 * mu0_) {
+        result.message = newton_ok ? format("the augmented Lagrangian stalled (boundary error %.3g, mu %.3g)", c, penalty.mu)
+                                   : "the nonlinear solver stalled (" + newton_message + ")";
+        stalled = true;
         break;
       }
       if (c <= eps) {  // Algorithm 1, lines 10–15 (ε, δ as in Conn–Gould–Toint, DESIGN §6)
@@ -130,13 +135,65 @@ class MorphImpl final : public Morpher::Impl {
                        format("%.3g, tolerance %.3g)", result.history.back().boundary_error_max, tol_max);
     x = P.state();
     result.guarded_cells = P.guarded_cells();
+    if (stalled && options_.finish_by_untangle) finish_by_untangle(target, x, step, result);
     return result;
   }
 
  private:
+  // DESIGN §6: on extreme squeezes the distortion's barrier holds the last cells against the
+  // penalty and the augmented Lagrangian stalls short of the boundary, though valid meshes
+  // exist there. Paper 001 finds one from the stalled iterate with the prescribed nodes on
+  // their targets (slide nodes on their planes): its regularized volume lets the cells that
+  // this placing inverts come back.
+  void finish_by_untangle(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step, MorphResult& result) {
+    MorphResult::Finish& f = result.finish.emplace();
+    f.stall = result.message;
+    f.boundary_error_max = result.history.back().boundary_error_max;
+    if (!untangler_) {
+      UntangleOptions uo;
+      uo.predictor = false;
+      uo.solver = options_.solver;
+      uo.threads = options_.threads;
+      try {
+        untangler_ = std::make_unique<Untangler>(*input_, *topology_, *bc_, uo);
+      } catch (const InputError& e) {
+        f.message = std::string("not run: ") + e.what();
+        result.message += "; no untangle pass (" + f.message + ")";
+        return;
+      }
+    }
+    Eigen::MatrixXd y = x;
+    for (std::size_t i = 0; i < bc_->n_nodes(); ++i)
+      if (bc_->role[i] == NodeRole::Slide) {
+        const auto j = static_cast<Eigen::Index>(i);
+        y.col(j) -= bc_->normal.col(j) * bc_->normal.col(j).dot(y.col(j) - bc_->target.col(j));
+      }
+    log_progress("morph: step " + std::to_string(step) + ": " + result.message + "; untangle pass from there");
+    const UntangleResult u = untangler_->solve(target, y, step);
+    f.initial_inverted = u.initial_inverted;
+    f.newton = u.newton;
+    f.linear = u.linear;
+    f.valid = u.converged;
+    f.message = u.message;
+    result.newton += u.newton;
+    result.linear += u.linear;
+    if (!u.converged) {
+      result.message += "; the untangle pass did not find a valid mesh either (" + u.message + ")";
+      return;
+    }
+    x = y;
+    result.converged = true;
+    result.message = format("boundary reached by an untangle pass (paper 001) after the augmented Lagrangian stalled"
+                            " %.3g from it", f.boundary_error_max);
+  }
+
   MorphOptions options_;
+  const Mesh* input_;
+  const Topology* topology_;
+  const BoundaryTargets* bc_;
   MorphProblem<d> problem_;
   std::unique_ptr<LinearSolver> solver_;
+  std::unique_ptr<Untangler> untangler_;  // the finishing pass, made when first needed
   NewtonMemory newton_memory_;  // shift and factorization carried from one subproblem to the next
   bool started_ = false;
   double mu0_ = 1.0, m_ = 10.0;

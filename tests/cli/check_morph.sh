@@ -36,15 +36,17 @@ expect unreachable 2 "cannot reach"
 printf 'node,dx,dy\n1,0.1,0\n' > "$work/short.csv"
 make_case missing_row "[{\"group\": \"inner\", \"displace\": {\"file\": \"short.csv\"}}]"
 expect missing_row 2 "has no row for node"
+make_case bad_finish "$rotate" '{"finish": "sideways"}'
+expect bad_finish 2 "finish"
 make_case budget "$rotate" '{"max_outer": 1}'
 expect budget 1 "augmented-Lagrangian iterations"
 [ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
 make_case laplace '[{"group": "inner", "rotate": {"center": [0, 0], "degrees": 120}}]' '{"method": "laplace"}'
 expect laplace 1 "inverted elements"
-for name in unknown_group unreachable missing_row budget laplace; do
+for name in unknown_group unreachable missing_row bad_finish budget laplace; do
   [ ! -e "$work/$name.vtu" ] || fail "$name: a mesh was written"
 done
-for name in unknown_group unreachable missing_row; do
+for name in unknown_group unreachable missing_row bad_finish; do
   [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
 done
 # Projection onto a `mesh` level set read from a file: P2 triangles over [-1.2, 1.2]² with

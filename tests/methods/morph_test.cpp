@@ -207,6 +207,44 @@ TEST(Morph, GuardedCellsLetAP2MeshFollowALargeTranslation) {
   EXPECT_GT(min_quality(mesh, x), 0.4);
 }
 
+// Paper 001's Test 1: the unit square's boundary squeezed to 1% of its height (y ↦ 0.01 y).
+// The distortion's barrier holds the thinnest cells against the penalty and the augmented
+// Lagrangian stalls short of the boundary (DESIGN §6); the untangle pass from there places
+// the boundary, untangles the cells that this inverts and ends valid with the boundary exact.
+TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 10);
+  const Topology topo = build_topology(mesh);
+  Eigen::MatrixXd squeezed = mesh.x;
+  squeezed.row(1) *= 0.01;
+  const BoundaryTargets bc = all_boundary(mesh, topo, squeezed);
+  MorphOptions o;
+  o.finish_by_untangle = false;
+  Eigen::MatrixXd stalled = mesh.x;
+  const MorphResult alone = Morpher(mesh, topo, bc, o).solve(bc.target, stalled);
+  ASSERT_FALSE(alone.converged);
+  EXPECT_NE(alone.message.find("stalled"), std::string::npos) << alone.message;
+  EXPECT_FALSE(alone.finish.has_value());
+
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = Morpher(mesh, topo, bc, MorphOptions{}).solve(bc.target, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  ASSERT_TRUE(r.finish.has_value());
+  EXPECT_TRUE(r.finish->valid);
+  EXPECT_GT(r.finish->boundary_error_max, 1e-3);  // where the augmented Lagrangian stopped
+  EXPECT_GT(r.finish->initial_inverted, 0u);      // placing the boundary from there tangled it
+  EXPECT_NE(r.message.find("untangle pass"), std::string::npos) << r.message;
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    const auto j = static_cast<Eigen::Index>(i);
+    if (bc.role[i] == NodeRole::Prescribed) {
+      EXPECT_EQ(x.col(j), squeezed.col(j));
+    }
+  }
+  EXPECT_GT(min_quality(mesh, x), 0.005);
+}
+
 TEST(Morph, RejectsAnInvertedInputMesh) {
   Mesh mesh = structured_mesh(ElementType::Triangle, 1, 2);
   mesh.x.col(4) = Eigen::Vector2d(1.4, 1.4);  // the centre node beyond the top-right corner

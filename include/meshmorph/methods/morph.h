@@ -2,6 +2,7 @@
 #pragma once
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct MorphOptions {
   int max_weight_updates = 30;  ///< nonlinear solves per augmented-Lagrangian iteration
   int max_newton = 200;    ///< Newton steps per nonlinear solve
   bool exact_first = true; ///< NewtonOptions::exact_first (DESIGN §6)
+  /// When the augmented Lagrangian stalls short of the boundary (μ ≥ 1e12 μ₀ and the
+  /// constraint no longer halves), finish with paper 001's untangling and smoothing from the
+  /// stalled iterate, the prescribed nodes on their targets (DESIGN §6, docs/morph.md).
+  bool finish_by_untangle = true;
   LinearSolverKind solver = LinearSolverKind::Auto;
   int threads = 0;
 };
@@ -61,6 +66,18 @@ struct MorphResult {
   /// (energy/validity_guard.h).
   std::size_t guarded_cells = 0;
   std::vector<MorphIteration> history;
+  /// Set when the augmented Lagrangian stalled and the untangle pass ran (finish_by_untangle):
+  /// why it stalled, how far the boundary still was, and what the pass did. Its Newton steps
+  /// and linear solves are in `newton` and `linear` too.
+  struct Finish {
+    std::string stall;                  ///< the augmented Lagrangian's message
+    double boundary_error_max = 0.0;    ///< max nodal distance from the targets when it stalled
+    std::size_t initial_inverted = 0;   ///< cells inverted once the boundary was placed
+    long long newton = 0, linear = 0;
+    bool valid = false;                 ///< the pass ended with a valid mesh
+    std::string message;                ///< the pass's own
+  };
+  std::optional<Finish> finish;
 };
 
 /// Morphs a mesh by the augmented-Lagrangian method of paper 000: minimises
