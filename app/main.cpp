@@ -14,6 +14,7 @@
 
 #include "meshmorph/app/commands.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
 
 namespace {
 
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
 
   try {
     meshmorph::apply_common_options(common);
+    meshmorph::record_input_files(true);  // no output the run derives replaces a file it read
     const meshmorph::Outcome outcome = run(std::cout);
     std::cout.flush();
     return outcome == meshmorph::Outcome::GoalReached ? 0 : kExitMissed;

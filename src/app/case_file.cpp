@@ -9,6 +9,7 @@
 #include "app/detail/case_parts.h"
 #include "app/detail/json_reader.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
 
 namespace meshmorph {
 
@@ -167,6 +168,7 @@ CaseFile read_case_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a folder, not a case file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open the case file");
+  note_input_file(path);
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw IoError(path.string() + ": cannot read the case file");

@@ -121,6 +121,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   const BoundaryMotion motion(c, input, topology);
   const BoundaryTargets& bc = motion.targets();
   const Projections exact = projections(c, input, bc);
+  detail::check_outputs(&c, output, report_path);
   std::vector<std::uint8_t> on_design(input.n_nodes(), 0);
   for (std::size_t i = 0; i < input.n_nodes(); ++i) on_design[i] = bc.role[i] == NodeRole::Prescribed;
   if (std::find(on_design.begin(), on_design.end(), 1) == on_design.end())

@@ -235,6 +235,10 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
     std::erase_if(t.nodes, [&](std::int32_t node) { return fixed[static_cast<std::size_t>(d * node)] && fixed[static_cast<std::size_t>(d * node + d - 1)]; });
   }
 
+  const std::optional<std::filesystem::path> output = a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output));
+  const std::optional<std::filesystem::path> report_path = a.report.empty() ? c.report : std::optional(std::filesystem::path(a.report));
+  detail::check_outputs(&c, output, report_path);
+
   Eigen::MatrixXd x = mesh.x;
   const FitResult r = fit_to_level_sets(mesh, topology, terms, fixed, settings.fit, x);
 
@@ -262,7 +266,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   report.boundary_error_l2.reset();
   report.fit_error_max = r.fit_error;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  detail::write_result_mesh(report, moved, q, a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output)));
+  detail::write_result_mesh(report, moved, q, output);
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();
   extra["fit_error_initial"] = r.fit_error0;
   extra["min_det_initial"] = r.min_det0;
@@ -273,7 +277,6 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   extra["split_cells"] = split_count;
   extra["cells_with_two_interface_facets"] = two_facet_cells;
   if (settings.fit.flat_edges) extra["flat_edge_cells"] = r.flat;
-  const std::optional<std::filesystem::path> report_path = a.report.empty() ? c.report : std::optional(std::filesystem::path(a.report));
   if (report_path) write_report(*report_path, report, extra);
 
   char line[200];
@@ -288,7 +291,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
                 r.fit_error, r.min_det0, r.min_det, report.inverted_elements);
   out << line;
   if (settings.fit.flat_edges) out << "flat     " << r.flat << " cells with det J <= 0 only on their flat edges\n";
-  return detail::print_result(out, report, a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output)));
+  return detail::print_result(out, report, output);
 }
 
 }  // namespace

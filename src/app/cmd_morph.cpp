@@ -89,6 +89,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   const Topology topology = build_topology(input);
   const BoundaryMotion motion(c, input, topology);
   const BoundaryTargets& bc = motion.targets();
+  detail::check_outputs(&c, output, report_path);
 
   Report report;
   report.method = settings.method == "morph" ? "morph" : "morph/" + settings.method;

@@ -252,6 +252,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
       for (std::int32_t node : t.nodes) slide_nodes += seen[static_cast<std::size_t>(node)]++ == 0 ? 1 : 0;
   }
 
+  detail::check_outputs(c ? &*c : nullptr, output, report_path);  // every input is read by now
   Eigen::MatrixXd x = start_mesh.x;
   const OptimizeResult r = optimize_mesh(start_mesh, topology, fixed, slides, options, x);
 

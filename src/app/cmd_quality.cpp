@@ -5,9 +5,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "app/detail/method_output.h"
 #include "meshmorph/app/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/error.h"
@@ -74,6 +76,10 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
     throw InputError(a.output + ": -o writes the per-element quality as VTU cell data; expected a .vtu file");
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = read_mesh(a.mesh);
+  std::vector<detail::OutputFile> outputs;
+  if (!a.json.empty()) outputs.push_back({"--json", a.json});
+  if (!a.output.empty()) outputs.push_back({"-o", a.output});
+  detail::check_outputs(outputs);
   const QualityReport q = quality_report(mesh);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_table(out, a.mesh, mesh, q);

@@ -98,6 +98,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   if (c) motion.emplace(*c, input, topology);
   else bare = detail::fixed_boundary(input, topology);
   const BoundaryTargets& bc = motion ? motion->targets() : bare;
+  detail::check_outputs(c ? &*c : nullptr, output, report_path);
   const int steps = c ? c->steps : 1;
 
   Report report;

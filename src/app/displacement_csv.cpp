@@ -8,6 +8,7 @@
 
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
 
 namespace meshmorph {
 
@@ -46,6 +47,7 @@ bool parse_tag(std::string_view s, std::int64_t& v) {
 DisplacementTable read_displacement_csv(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open the displacement file");
+  note_input_file(path);
   DisplacementTable t;
   t.file = path;
   std::vector<double> values;

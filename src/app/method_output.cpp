@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <string>
 
+#include "meshmorph/error.h"
 #include "meshmorph/fem/trace.h"
+#include "meshmorph/io/input_files.h"
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph::detail {
@@ -40,6 +42,33 @@ std::filesystem::path step_path(const std::filesystem::path& out, int step) {
   char suffix[16];
   std::snprintf(suffix, sizeof suffix, "_%04d", step);
   return out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+}
+
+void check_outputs(const std::vector<OutputFile>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputFile& o = outputs[i];
+    if (const auto input = o.named ? std::nullopt : input_file_at(o.path))
+      throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
+                       "), which only an output you name yourself may replace");
+    for (std::size_t j = 0; j < i; ++j)
+      if (same_file(outputs[j].path, o.path))
+        throw InputError(o.label + ": " + o.path.string() + " is also the file of " + outputs[j].label +
+                         ": each output needs a path of its own");
+  }
+}
+
+void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
+                   const std::optional<std::filesystem::path>& report) {
+  const std::string where = c ? c->file.string() + ": " : std::string();
+  std::vector<OutputFile> outputs;
+  if (output) {
+    outputs.push_back({where + (c ? "output" : "-o"), *output});
+    if (c && c->output_each_step)
+      for (int s = 1; s < c->steps; ++s)
+        outputs.push_back({where + "output_each_step (step " + std::to_string(s) + ")", step_path(*output, s), false});
+  }
+  if (report) outputs.push_back({where + (c ? "report" : "--report"), *report});
+  check_outputs(outputs);
 }
 
 QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc) {

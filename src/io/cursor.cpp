@@ -5,12 +5,14 @@
 #include <fstream>
 
 #include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
 
 namespace meshmorph::detail {
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open for reading");
+  note_input_file(path);
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) throw IoError(path.string() + ": cannot determine the file size");

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # check_morph.sh MESHMORPH EXAMPLES WORK: `morph` end to end on the annulus example — a
-# converged run writes a valid mesh and its report; bad motions exit 2 and write nothing; a
-# run out of budget and a baseline that inverts elements exit 1 and write no mesh.
+# converged run writes a valid mesh and its report; bad motions, a step file that would replace
+# an input and two outputs on one file exit 2 and write nothing; a run out of budget and a
+# baseline that inverts elements exit 1 and write no mesh.
 set -u
 mm=$1 examples=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -49,6 +50,25 @@ done
 for name in unknown_group unreachable missing_row bad_finish; do
   [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
 done
+# A file written by the run never replaces an input that the user did not name as the output
+# (DESIGN 3.1): the step files of output_each_step. Nor do two outputs share a file. Exit 2,
+# nothing written, the inputs unchanged.
+cp "$mesh" "$work/own_0001.msh"
+own() {  # own NAME OUTPUT REPORT [EXTRA]: a case on the copy own_0001.msh of the mesh
+  printf '{"mesh": "own_0001.msh", "boundary": %s, %s"output": "%s", "report": "%s"}\n' "$rotate" "${4:-}" "$2" "$3" \
+    > "$work/$1.case.json"
+}
+own steps own.msh steps.json '"steps": 2, "output_each_step": true, '
+own twice twice.vtu ./twice.vtu
+before=$(cksum < "$work/own_0001.msh")
+expect steps 2 "only an output you name"
+expect twice 2 "a path of its own"
+[ "$(cksum < "$work/own_0001.msh")" = "$before" ] || fail "the input mesh was changed"
+for f in own.msh steps.json twice.vtu; do [ ! -e "$work/$f" ] || fail "$f was written"; done
+own named own_0001.msh named.json  # named by the user: replaced
+expect named 0
+[ "$(cksum < "$work/own_0001.msh")" != "$before" ] || fail "named: the output was not written"
+
 # Projection onto a `mesh` level set read from a file: P2 triangles over [-1.2, 1.2]² with
 # the point data phi = |x| − 0.44, so the inner circle (r = 0.4) grows to about r = 0.44.
 awk 'BEGIN {

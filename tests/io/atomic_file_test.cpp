@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace {
@@ -79,6 +81,32 @@ TEST_F(AtomicFile, AReadOnlyFolderIsAnIoError) {
   if (::geteuid() == 0) GTEST_SKIP() << "root can write into read-only folders";
   fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
   EXPECT_THROW(write_atomically(dir_ / "out.txt", true, [](std::ostream& o) { o << 1; }), IoError);
+}
+
+// While recording (the CLI's), a mesh read through a link is known as an input by any of its
+// names; recording off (the library's default) forgets it.
+TEST_F(AtomicFile, ReadersNoteTheirFilesAsInputsWhileRecording) {
+  const fs::path mesh = dir_ / "in.msh";
+  std::ofstream(mesh) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n"
+                         "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n";
+  fs::create_symlink(mesh, dir_ / "link.msh");
+  read_mesh(dir_ / "link.msh");
+  EXPECT_FALSE(input_file_at(mesh).has_value());  // not recording
+  record_input_files(true);
+  read_mesh(dir_ / "link.msh");
+  EXPECT_TRUE(input_file_at(mesh).has_value());
+  EXPECT_TRUE(input_file_at(dir_ / "." / "in.msh").has_value());
+  EXPECT_TRUE(input_file_at(dir_ / "link.msh").has_value());
+  EXPECT_FALSE(input_file_at(dir_ / "out.msh").has_value());
+  record_input_files(false);
+  EXPECT_FALSE(input_file_at(mesh).has_value());
+}
+
+TEST(SameFile, ComparesPathsThatDoNotExistYet) {
+  const fs::path cwd = fs::current_path();
+  EXPECT_TRUE(same_file("no_such_output.vtu", "./no_such_output.vtu"));
+  EXPECT_TRUE(same_file("no_such_output.vtu", cwd / "sub" / ".." / "no_such_output.vtu"));
+  EXPECT_FALSE(same_file("no_such_output.vtu", "no_such_report.json"));
 }
 
 }  // namespace

@@ -3,10 +3,13 @@
 #include <filesystem>
 #include <optional>
 #include <ostream>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/methods/boundary_targets.h"
@@ -25,6 +28,26 @@ BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology);
 
 /// `out` with the step number before the extension: out_0003.vtu (`output_each_step`).
 std::filesystem::path step_path(const std::filesystem::path& out, int step);
+
+/// A file a command writes: the key or option that gives it (for messages), its path, and
+/// whether the user named it (a mesh or report path) or the command derived it (the step
+/// files of `output_each_step`).
+struct OutputFile {
+  std::string label;
+  std::filesystem::path path;
+  bool named = true;
+};
+
+/// Throws InputError, before anything is written, where two outputs share a file (the later
+/// would replace the earlier) or a derived output is a file the run read: DESIGN §3.1 lets an
+/// input be replaced only where the user names it as the output.
+void check_outputs(const std::vector<OutputFile>& outputs);
+
+/// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
+/// step meshes) and its `report`, labelled by the case file's keys, or by the command-line
+/// options where `c` is null (a bare mesh).
+void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
+                   const std::optional<std::filesystem::path>& report);
 
 /// Measures `moved` and fills the mesh, quality and boundary fields of a method's report
 /// (DESIGN §3.3): quality against `input` unless it is null. An invalid result is not
