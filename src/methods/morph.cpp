@@ -149,6 +149,10 @@ class MorphImpl final : public Morpher::Impl {
     MorphResult::Finish& f = result.finish.emplace();
     f.stall = result.message;
     f.boundary_error_max = result.history.back().boundary_error_max;
+    // The stalled λ and μ (≥ 1e12 μ₀) would start the next step of a series at the condition
+    // that stalled this one: it starts afresh from μ₀ and λ = 0; the weights carry over.
+    started_ = false;
+    problem_.penalty().multipliers().setZero();
     if (!untangler_) {
       UntangleOptions uo;
       uo.predictor = false;

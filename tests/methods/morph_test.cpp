@@ -243,6 +243,21 @@ TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
     }
   }
   EXPECT_GT(min_quality(mesh, x), 0.005);
+
+  // A series goes on from there, back to half the height: the augmented Lagrangian starts
+  // afresh (μ₀ of the state it starts from, not the ≥ 1e12 μ₀ that stalled) and needs no
+  // other pass.
+  Eigen::MatrixXd half = mesh.x;
+  half.row(1) *= 0.5;
+  Morpher series(mesh, topo, bc, MorphOptions{});
+  Eigen::MatrixXd y = mesh.x;
+  const MorphResult r1 = series.solve(bc.target, y, 1);
+  ASSERT_TRUE(r1.finish.has_value());
+  const BoundaryTargets back = all_boundary(mesh, topo, half);
+  const MorphResult r2 = series.solve(back.target, y, 2);
+  EXPECT_TRUE(r2.converged) << r2.message;
+  EXPECT_FALSE(r2.finish.has_value());
+  EXPECT_LT(r2.history.front().mu, 1e-6 * r1.history.back().mu);
 }
 
 TEST(Morph, RejectsAnInvertedInputMesh) {
