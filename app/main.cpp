@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
 
   try {
     meshmorph::apply_common_options(common);
-    meshmorph::record_input_files(true);  // no output the run derives replaces a file it read
+    meshmorph::record_input_files(true);  // no output the run names itself replaces a file it read
     const meshmorph::Outcome outcome = run(std::cout);
     std::cout.flush();
     return outcome == meshmorph::Outcome::GoalReached ? 0 : kExitMissed;

@@ -5,9 +5,9 @@
 
 namespace meshmorph {
 
-/// The files a run has read, so that an output the run derives itself (a step file of
-/// `output_each_step`, a bare mesh's default output) never replaces one (DESIGN §3.1: an
-/// input is never overwritten unless the user names it as the output). Off by default; the
+/// The files a run has read, so that an output the run names itself (a step file of
+/// `output_each_step`) never replaces one (DESIGN §3.1: an input is never overwritten
+/// unless the user names it as the output). Off by default; the
 /// CLI turns it on, and then every reader notes the file it opens (meshes, case files,
 /// displacement tables).
 void record_input_files(bool on);
