@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "meshmorph/error.h"
+#include "solve/detail/float_factor.h"
 
 namespace meshmorph::detail {
 
@@ -40,6 +41,7 @@ void single_threaded_blas() {
 struct CholmodSolver::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  FloatFactor single;  // solve_previous's preconditioner, copied from `factor` when first needed
 
   Impl() {
     single_threaded_blas();
@@ -80,6 +82,7 @@ bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A) { return fac
 
 bool CholmodSolver::factorize(const SparseView& A) {
   factorized_ = false;
+  impl_->single.clear();
   const std::size_t nnz = static_cast<std::size_t>(A.nnz());
   const bool same_pattern = impl_->factor != nullptr && outer_.size() == static_cast<std::size_t>(A.n) + 1 &&
                             inner_.size() == nnz && std::equal(outer_.begin(), outer_.end(), A.outer) &&
@@ -160,15 +163,23 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
     stats.message = "no factorization of this pattern to reuse";
     return stats;
   }
-  // Conjugate gradients on A preconditioned by the old factor. A pair of triangular solves
-  // costs a few hundredths of a factorization in 3D, so a handful of iterations is the
-  // budget; beyond it a new factorization is cheaper.
+  // Conjugate gradients on A preconditioned by the old factor, read in single precision
+  // (FloatFactor). A pair of triangular solves costs a few hundredths of a factorization in
+  // 3D, so a handful of iterations is the budget; beyond it a new factorization is cheaper.
   constexpr int k_max_iterations = 12;
   const double b_norm = b.norm();
   const double tol = (rtol > 0.0 ? rtol : 1e-9) * b_norm;
   if (x.size() != b.size()) x.setZero(b.size());
+  FloatFactor& M = impl_->single;
+  if (M.empty()) {
+    const cholmod_factor* L = impl_->factor;
+    MESHMORPH_CHECK(L->is_super && L->itype == CHOLMOD_INT, "cholmod: the factor is not supernodal");
+    M.assign(static_cast<int>(L->n), static_cast<int>(L->nsuper), static_cast<const int*>(L->super),
+             static_cast<const int*>(L->pi), static_cast<const int*>(L->px), static_cast<const int*>(L->s),
+             static_cast<const double*>(L->x), static_cast<const int*>(L->Perm));
+  }
   Eigen::VectorXd r = b - A * x, z(b.size()), p(b.size()), q(b.size());
-  solve(r.data(), z.data());
+  M.solve(r.data(), z.data());
   p = z;
   double rz = r.dot(z);
   double r_norm = r.norm();
@@ -186,7 +197,7 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
     ++stats.iterations;
     r_norm = r.norm();
     if (r_norm <= tol) break;
-    solve(r.data(), z.data());
+    M.solve(r.data(), z.data());
     const double rz_new = r.dot(z);
     p = z + (rz_new / rz) * p;
     rz = rz_new;
