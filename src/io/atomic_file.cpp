@@ -18,7 +18,11 @@ namespace {
 // Creates a unique empty file next to `path` and returns its name.
 std::filesystem::path make_temporary(const std::filesystem::path& path) {
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::string name = (folder / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
+  // Appended, not "." + name: GCC 12 warns (-Wrestrict, a false positive) on that operator+.
+  std::string hidden = ".";
+  hidden += path.filename().string();
+  hidden += ".tmp-XXXXXX";
+  std::string name = (folder / hidden).string();
   const int fd = ::mkstemp(name.data());
   if (fd < 0)
     throw IoError(path.string() + ": cannot create a temporary file in " + folder.string() + ": " +
