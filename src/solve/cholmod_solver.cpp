@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "meshmorph/error.h"
+#include "solve/detail/cholmod_header.h"
 #include "solve/detail/float_factor.h"
 
 namespace meshmorph::detail {
@@ -56,23 +57,6 @@ struct CholmodSolver::Impl {
     if (factor) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
   }
-
-  // A cholmod_sparse header over the caller's arrays (CHOLMOD does not write through it).
-  static cholmod_sparse header(const SparseView& A) {
-    cholmod_sparse s{};
-    s.nrow = s.ncol = static_cast<std::size_t>(A.n);
-    s.nzmax = static_cast<std::size_t>(A.nnz());
-    s.p = const_cast<int*>(A.outer);
-    s.i = const_cast<int*>(A.inner);
-    s.x = const_cast<double*>(A.values);
-    s.stype = 1;
-    s.itype = CHOLMOD_INT;
-    s.xtype = CHOLMOD_REAL;
-    s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1;
-    s.packed = 1;
-    return s;
-  }
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
@@ -87,7 +71,7 @@ bool CholmodSolver::factorize(const SparseView& A) {
   const bool same_pattern = impl_->factor != nullptr && outer_.size() == static_cast<std::size_t>(A.n) + 1 &&
                             inner_.size() == nnz && std::equal(outer_.begin(), outer_.end(), A.outer) &&
                             std::equal(inner_.begin(), inner_.end(), A.inner);
-  cholmod_sparse S = Impl::header(A);
+  cholmod_sparse S = cholmod_header(A);
   cholmod_common* c = &impl_->common;
   if (!same_pattern) {
     if (impl_->factor) cholmod_free_factor(&impl_->factor, c);

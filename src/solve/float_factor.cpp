@@ -66,10 +66,12 @@ void FloatFactor::clear() {
   rows_ = {};
 }
 
+FloatFactor::Supernode FloatFactor::supernode(int s) const {
+  return {super_[s], super_[s + 1] - super_[s], pi_[s + 1] - pi_[s], rows_.data() + pi_[s], x_.data() + px_[s]};
+}
+
 void FloatFactor::forward(int s) const {
-  const int k1 = super_[s], nc = super_[s + 1] - k1, nr = pi_[s + 1] - pi_[s];
-  const int* rows = rows_.data() + pi_[s];
-  const float* L = x_.data() + px_[s];
+  const auto [k1, nc, nr, rows, L] = supernode(s);
   const auto col = [&](int j) { return L + static_cast<std::ptrdiff_t>(j) * nr; };
   double* y = y_.data();
   double* t = work_.data();
@@ -95,9 +97,7 @@ void FloatFactor::forward(int s) const {
 }
 
 void FloatFactor::backward(int s) const {
-  const int k1 = super_[s], nc = super_[s + 1] - k1, nr = pi_[s + 1] - pi_[s];
-  const int* rows = rows_.data() + pi_[s];
-  const float* L = x_.data() + px_[s];
+  const auto [k1, nc, nr, rows, L] = supernode(s);
   const auto col = [&](int j) { return L + static_cast<std::ptrdiff_t>(j) * nr; };
   double* y = y_.data();
   double* t = work_.data();

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "solve/detail/float_factor.h"
 
-#include <cholmod.h>
 #include <gtest/gtest.h>
 
+#include "solve/detail/cholmod_header.h"
 #include "solve/linear_solver_fixtures.h"
 
 namespace meshmorph {
@@ -18,18 +18,7 @@ TEST(FloatFactor, SolvesWithCholmodsSupernodalFactorToSinglePrecision) {
   cholmod_start(&c);
   c.print = 0;
   c.supernodal = CHOLMOD_SUPERNODAL;
-  cholmod_sparse S{};
-  S.nrow = S.ncol = static_cast<std::size_t>(A.rows());
-  S.nzmax = static_cast<std::size_t>(A.nonZeros());
-  S.p = const_cast<int*>(A.outerIndexPtr());
-  S.i = const_cast<int*>(A.innerIndexPtr());
-  S.x = const_cast<double*>(A.valuePtr());
-  S.stype = 1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_REAL;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = 1;
-  S.packed = 1;
+  cholmod_sparse S = detail::cholmod_header(detail::view_of(A));
   cholmod_factor* L = cholmod_analyze(&S, &c);
   ASSERT_NE(L, nullptr);
   ASSERT_TRUE(cholmod_factorize(&S, L, &c));

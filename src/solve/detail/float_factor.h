@@ -28,6 +28,13 @@ class FloatFactor {
   void clear();
 
  private:
+  // Supernode s: its first column, columns, rows, row indices and column-major values.
+  struct Supernode {
+    int k1, nc, nr;
+    const int* rows;
+    const float* L;
+  };
+  Supernode supernode(int s) const;
   // One supernode's part of L y = b (its columns solved, the rows below updated) and of
   // Lᵀ z = y (its columns solved from the rows below), in y_.
   void forward(int s) const;
