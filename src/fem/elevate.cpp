@@ -60,9 +60,15 @@ struct Elevator {
         int nt = 0;
         for (int i = 0; i < nc; ++i) {
           const auto q = std::llround(weights[static_cast<std::size_t>(j)](i) * 1e9);
-          if (q != 0) terms[static_cast<std::size_t>(nt++)] = {v[i], q};
+          if (q == 0) continue;
+          // Insertion into sorted order (at most eight terms; std::sort on the first nt of
+          // eight draws GCC 12's false -Warray-bounds).
+          const std::pair<std::int64_t, std::int64_t> t{v[i], q};
+          int at = nt++;
+          for (; at > 0 && t < terms[static_cast<std::size_t>(at - 1)]; --at)
+            terms[static_cast<std::size_t>(at)] = terms[static_cast<std::size_t>(at - 1)];
+          terms[static_cast<std::size_t>(at)] = t;
         }
-        std::sort(terms.begin(), terms.begin() + nt);
         NodeKey key;
         key.fill(-1);
         for (int t = 0; t < nt; ++t) {

@@ -87,7 +87,8 @@ std::vector<P3> lattice(ElementType type, int p) {
       out.push_back({0, 0, 0});
       break;
     case ElementType::Line:
-      out.insert(out.end(), {P3{0, 0, 0}, P3{p, 0, 0}});
+      out.push_back({0, 0, 0});
+      out.push_back({p, 0, 0});
       edge(out, {0, 0, 0}, {p, 0, 0}, p);
       break;
     case ElementType::Triangle:
@@ -95,7 +96,7 @@ std::vector<P3> lattice(ElementType type, int p) {
       break;
     case ElementType::Quadrilateral: {
       const std::array<P3, 4> c{P3{0, 0, 0}, P3{p, 0, 0}, P3{p, p, 0}, P3{0, p, 0}};
-      out.insert(out.end(), c.begin(), c.end());
+      for (const P3& corner : c) out.push_back(corner);  // not insert(): GCC 12's false -Wstringop-overflow
       edge(out, c[0], c[1], p);
       edge(out, c[1], c[2], p);
       edge(out, c[3], c[2], p);
@@ -114,7 +115,7 @@ std::vector<P3> lattice(ElementType type, int p) {
         const int y = (i & 3) >= 2 ? p : 0;
         c[static_cast<std::size_t>(i)] = {x, y, i >= 4 ? p : 0};
       }
-      out.insert(out.end(), c.begin(), c.end());
+      for (const P3& corner : c) out.push_back(corner);  // not insert(): GCC 12's false -Wstringop-overflow
       constexpr int edges[12][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}, {4, 5}, {5, 6}, {7, 6}, {4, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
       for (const auto& e : edges) edge(out, c[e[0]], c[e[1]], p);
       // Faces x=0, x=1, y=0, y=1, z=0, z=1; inside each, the lower free axis runs fastest.
