@@ -77,7 +77,7 @@ TEST(ExprLevelSet, SineWallClosestPointIsOptimal) {
     double nearest = 1e300;
     for (int i = -2000; i <= 4000; ++i) {
       const double t = i * 5e-4;
-      nearest = std::min(nearest, (vec({t, 0.75 + 0.25 * std::sin(pi * (0.5 + 2 * t))}) - x).norm());
+      nearest = std::min(nearest, std::hypot(t - x(0), 0.75 + 0.25 * std::sin(pi * (0.5 + 2 * t)) - x(1)));
     }
     EXPECT_LE((*p - x).norm(), nearest + 1e-12);
   }
