@@ -157,7 +157,7 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
   FloatFactor& M = impl_->single;
   if (M.empty()) {
     const cholmod_factor* L = impl_->factor;
-    MESHMORPH_CHECK(L->is_super && L->itype == CHOLMOD_INT, "cholmod: the factor is not supernodal");
+    MESHMORPH_CHECK(L->is_super && L->itype == CHOLMOD_INT && L->Perm, "cholmod: the factor is not supernodal (with its permutation)");
     M.assign(static_cast<int>(L->n), static_cast<int>(L->nsuper), static_cast<const int*>(L->super),
              static_cast<const int*>(L->pi), static_cast<const int*>(L->px), static_cast<const int*>(L->s),
              static_cast<const double*>(L->x), static_cast<const int*>(L->Perm));

@@ -43,17 +43,13 @@ void dot4(const float* a0, const float* a1, const float* a2, const float* a3, co
 
 void FloatFactor::assign(int n, int nsuper, const int* super, const int* pi, const int* px, const int* s_rows,
                          const double* x, const int* perm) {
-  n_ = n;
   super_.assign(super, super + nsuper + 1);
   pi_.assign(pi, pi + nsuper + 1);
   px_.assign(px, px + nsuper + 1);
   rows_.assign(s_rows, s_rows + pi[nsuper]);
   x_.resize(static_cast<std::size_t>(px[nsuper]));
   std::transform(x, x + px[nsuper], x_.begin(), [](double v) { return static_cast<float>(v); });
-  if (perm)
-    perm_.assign(perm, perm + n);
-  else
-    perm_.clear();
+  perm_.assign(perm, perm + n);
   int max_rows = 0;
   for (int s = 0; s < nsuper; ++s) max_rows = std::max(max_rows, pi[s + 1] - pi[s]);
   y_.resize(static_cast<std::size_t>(n));
@@ -61,7 +57,6 @@ void FloatFactor::assign(int n, int nsuper, const int* super, const int* pi, con
 }
 
 void FloatFactor::clear() {
-  n_ = 0;
   x_ = {};
   rows_ = {};
 }
@@ -125,17 +120,12 @@ void FloatFactor::backward(int s) const {
 void FloatFactor::solve(const double* b, double* x) const {
   const int nsuper = static_cast<int>(super_.size()) - 1;
   double* y = y_.data();
-  if (perm_.empty())
-    std::copy(b, b + n_, y);
-  else
-    for (int k = 0; k < n_; ++k) y[k] = b[perm_[k]];
+  const auto n = static_cast<int>(perm_.size());
+  for (int k = 0; k < n; ++k) y[k] = b[perm_[k]];
   // L y = P b supernode by supernode, then Lᵀ z = y backwards.
   for (int s = 0; s < nsuper; ++s) forward(s);
   for (int s = nsuper - 1; s >= 0; --s) backward(s);
-  if (perm_.empty())
-    std::copy(y, y + n_, x);
-  else
-    for (int k = 0; k < n_; ++k) x[perm_[k]] = y[k];
+  for (int k = 0; k < n; ++k) x[perm_[k]] = y[k];
 }
 
 }  // namespace meshmorph::detail

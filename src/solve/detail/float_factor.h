@@ -19,12 +19,12 @@ namespace meshmorph::detail {
 class FloatFactor {
  public:
   /// Copies a factor of n unknowns with nsuper supernodes; perm[k] is the row of A that is row k
-  /// of P A Pᵀ (null: the identity).
+  /// of P A Pᵀ.
   void assign(int n, int nsuper, const int* super, const int* pi, const int* px, const int* s_rows, const double* x,
               const int* perm);
   /// x = (Lᵀ)⁻¹ L⁻¹ b in the unknowns of A; b and x may alias. Accumulates in double.
   void solve(const double* b, double* x) const;
-  bool empty() const { return n_ == 0; }
+  bool empty() const { return x_.empty(); }
   void clear();
 
  private:
@@ -40,7 +40,6 @@ class FloatFactor {
   void forward(int s) const;
   void backward(int s) const;
 
-  int n_ = 0;
   std::vector<int> super_, pi_, px_, rows_, perm_;
   std::vector<float> x_;
   mutable std::vector<double> y_, work_;
