@@ -365,7 +365,9 @@ TEST(Optimize, TwoLevelPreconditioningCutsTheCgIterations) {
     FitOptions o;
     o.quadrature = QuadratureFamily::Lobatto;
     NewtonOptions no;
-    no.decrement_tolerance = 1e-20;
+    // Above the energy's rounding floor: at the grid F is 1e-17 of round-off, and where the
+    // decrements stall (1e-18 to 1e-24) depends on the rounding of the coarse solves.
+    no.decrement_tolerance = 1e-16;
     std::array<NewtonStats, 2> stats;
     std::array<Eigen::MatrixXd, 2> x;
     for (int two_level = 0; two_level < 2; ++two_level) {
@@ -378,7 +380,7 @@ TEST(Optimize, TwoLevelPreconditioningCutsTheCgIterations) {
       EXPECT_TRUE(stats[static_cast<std::size_t>(two_level)].converged) << stats[static_cast<std::size_t>(two_level)].message;
     }
     EXPECT_LT((x[1] - x[0]).cwiseAbs().maxCoeff(), 1e-8);  // the grid: F = 0 there
-    EXPECT_LT(4 * stats[1].krylov_iterations, 3 * stats[0].krylov_iterations)  // 37 vs 57, 80 vs 151 when written
+    EXPECT_LT(4 * stats[1].krylov_iterations, 3 * stats[0].krylov_iterations)  // 29 vs 44, 61 vs 113 (session 17)
         << stats[1].krylov_iterations << " CG iterations with the coarse level, " << stats[0].krylov_iterations << " without";
   }
 }

@@ -5,6 +5,7 @@
 
 #include "meshmorph/energy/coarse_space.h"
 #include "solve/detail/cg_amg_solver.h"
+#include "solve/detail/cholmod_header.h"
 #include "solve/detail/cholmod_solver.h"
 #include "solve/linear_solver_fixtures.h"
 
@@ -233,6 +234,47 @@ TEST(LinearSolver, CholeskyReusesItsAnalysisWhileThePatternIsUnchanged) {
   EXPECT_EQ(solver.n_analyses(), 2);
   ASSERT_TRUE(solver.solve(test::random_vector(C.rows()), x).ok);
   EXPECT_LE(relative_residual(C, test::random_vector(C.rows()), x), 1e-12);
+}
+
+// CHOLMOD's own analysis of A, with its default amalgamation: the number of supernodes.
+int default_supernodes(const Eigen::SparseMatrix<double>& A) {
+  cholmod_common c;
+  cholmod_start(&c);
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse S = detail::cholmod_header(detail::view_of(A));
+  cholmod_factor* L = cholmod_analyze(&S, &c);
+  const int n_super = L && L->is_super ? static_cast<int>(L->nsuper) : -1;
+  if (L) cholmod_free_factor(&L, &c);
+  cholmod_finish(&c);
+  return n_super;
+}
+
+// Narrow supernodes (2D Hessians) are merged further than CHOLMOD's default; wide ones (3D)
+// keep it. Either way the factor solves to rounding, directly and as solve_previous's
+// preconditioner.
+TEST(LinearSolver, CholeskyMergesNarrowSupernodesOnly) {
+  const Eigen::SparseMatrix<double> A2 = test::stiffness_matrix(2, 40, true, 10.0, 1.0);
+  const Eigen::SparseMatrix<double> A3 = test::stiffness_matrix(3, 12, true, 1.0, 1.0);
+  const int default2 = default_supernodes(A2), default3 = default_supernodes(A3);
+  ASSERT_LT(A2.rows(), 15 * default2) << "the 2D case should have narrow supernodes by default";
+  ASSERT_GE(A3.rows(), 15 * default3) << "the 3D case should have wide supernodes by default";
+  for (const auto* A : {&A2, &A3}) {
+    detail::CholmodSolver solver;
+    ASSERT_TRUE(solver.factorize(*A));
+    const Eigen::VectorXd b = test::random_vector(A->rows());
+    Eigen::VectorXd x;
+    ASSERT_TRUE(solver.solve(b, x).ok);
+    EXPECT_LE(relative_residual(*A, b, x), 1e-12);
+    x.setZero();
+    const LinearSolveStats s = solver.solve_previous(*A, b, x, 1e-10);
+    ASSERT_TRUE(s.ok) << s.message;
+    EXPECT_LE(relative_residual(*A, b, x), 1e-10);
+    if (A == &A2) {
+      EXPECT_LE(solver.n_supernodes(), default2 * 3 / 4);
+    } else {
+      EXPECT_EQ(solver.n_supernodes(), default3);
+    }
+  }
 }
 
 // A − σI with σ between the smallest and the largest eigenvalue of A: indefinite, with a

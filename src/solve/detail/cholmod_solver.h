@@ -46,6 +46,9 @@ class CholmodSolver final : public LinearSolver {
   void solve(const double* b, double* x);
   /// Number of symbolic analyses done so far (one per distinct pattern).
   int n_analyses() const { return n_analyses_; }
+  /// Supernodes of the current analysis (0 before the first). Where CHOLMOD's default
+  /// amalgamation leaves them narrow (2D Hessians), the analysis merges more of them.
+  int n_supernodes() const;
   /// True when the last factorize() succeeded.
   bool is_factorized() const { return factorized_; }
 
