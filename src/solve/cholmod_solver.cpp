@@ -50,8 +50,8 @@ void single_threaded_blas() {
 // ordering and looser amalgamation: supernodes of up to 8 columns merge whatever their
 // zeros, up to 32 with 80% of zeros or fewer, up to 64 with 20%, larger ones with 10%
 // (CHOLMOD's nrelax and zrelax; the defaults are 4, 16, 48 and 80%, 10%, 5%). On the 2D
-// benchmarks a factorization then takes 13–27% less time although L holds 30–45% more
-// entries; on 3D Hessians it took up to 20% longer, so they keep the defaults.
+// benchmarks a factorization then takes 13–27% less time although L holds 28–47% more
+// entries; on 3D Hessians it took up to 21% longer, so they keep the defaults.
 namespace {
 
 constexpr double k_narrow_supernodes = 15.0;
