@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iterator>
+#include <utility>
 #include <vector>
 
 #include <cholmod.h>
@@ -63,26 +63,22 @@ cholmod_factor* analyze(cholmod_sparse* A, cholmod_common* c) {
     return L;
   const int* perm = static_cast<const int*>(L->Perm);
   std::vector<int> given(perm, perm + L->n);
-  size_t nrelax[3];
-  double zrelax[3];
-  std::copy(std::begin(c->nrelax), std::end(c->nrelax), nrelax);
-  std::copy(std::begin(c->zrelax), std::end(c->zrelax), zrelax);
-  const int nmethods = c->nmethods;
-  const auto method = c->method[0];
-  c->nrelax[0] = 8;
-  c->nrelax[1] = 32;
-  c->nrelax[2] = 64;
-  c->zrelax[0] = 0.8;
-  c->zrelax[1] = 0.2;
-  c->zrelax[2] = 0.1;
-  c->nmethods = 1;
-  c->method[0].ordering = CHOLMOD_GIVEN;
+  // The looser settings go in for this one analysis and the common's own come back after.
+  std::size_t nrelax[3] = {8, 32, 64};
+  double zrelax[3] = {0.8, 0.2, 0.1};
+  int nmethods = 1;
+  auto method = c->method[0];
+  method.ordering = CHOLMOD_GIVEN;
+  const auto swap_settings = [&] {
+    std::swap(c->nrelax, nrelax);
+    std::swap(c->zrelax, zrelax);
+    std::swap(c->nmethods, nmethods);
+    std::swap(c->method[0], method);
+  };
+  swap_settings();
   cholmod_factor* relaxed = cholmod_analyze_p(A, given.data(), nullptr, 0, c);
   const int status = c->status;
-  std::copy(nrelax, nrelax + 3, std::begin(c->nrelax));
-  std::copy(zrelax, zrelax + 3, std::begin(c->zrelax));
-  c->nmethods = nmethods;
-  c->method[0] = method;
+  swap_settings();
   if (!relaxed || status < CHOLMOD_OK) {  // keep the first analysis
     if (relaxed) cholmod_free_factor(&relaxed, c);
     c->status = CHOLMOD_OK;
