@@ -3,6 +3,7 @@
 // (0 goal reached, 1 ran without reaching it, 2 bad input or usage; DESIGN §3.1).
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <stdexcept>
@@ -21,19 +22,37 @@ namespace {
 constexpr int kExitMissed = 1;
 constexpr int kExitBadInput = 2;
 
-// Debian 12's OpenBLAS 0.3.21 (the BLAS behind CHOLMOD) does not know every recent Xeon and
-// falls back to its SSE3 "Prescott" kernels, which made a CHOLMOD-bound morph 1.3x slower
-// here. It picks its kernels when it loads, from OPENBLAS_CORETYPE: run once more with the
-// family the CPU supports. A failed exec leaves everything as it was.
-void choose_blas_kernels(char** argv) {
-  if (std::getenv("OPENBLAS_CORETYPE") != nullptr || std::getenv("MESHMORPH_BLAS_CHOSEN") != nullptr) return;
+// Settings that the libraries read once, when they load: where one is missing, set it and
+// run once more (a failed exec leaves everything as it was). Not under valgrind, which would
+// run the second program unchecked.
+// - Debian 12's OpenBLAS 0.3.21 (the BLAS behind CHOLMOD) does not know every recent Xeon and
+//   falls back to its SSE3 "Prescott" kernels, which made a CHOLMOD-bound morph 1.3x slower
+//   here: OPENBLAS_CORETYPE names the family the CPU supports.
+// - libgomp's threads spin at a barrier until the slowest arrives. Where another job shares
+//   the cores, the one they wait for is often paused, and their spinning keeps it so: with
+//   one other busy process on 2 cores a 2-thread morph took 8 times longer than on one thread
+//   (bench/README.md, "Threads on a shared machine"). OMP_WAIT_POLICY=passive makes them
+//   sleep; unless the user chose a policy or a spin count.
+void set_runtime_environment(char** argv) {
+  if (std::getenv("MESHMORPH_ENVIRONMENT_SET") != nullptr) return;
+  if (const char* preload = std::getenv("LD_PRELOAD"); preload != nullptr && std::strstr(preload, "vgpreload") != nullptr)
+    return;
+  bool changed = false;
   using CoreName = char* (*)();
   const auto name = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
-  if (name == nullptr || strcasecmp(name(), "Prescott") != 0) return;
-  const char* core = __builtin_cpu_supports("avx512f") ? "SkylakeX" : __builtin_cpu_supports("avx2") ? "Haswell" : nullptr;
-  if (core == nullptr) return;
-  setenv("OPENBLAS_CORETYPE", core, 1);
-  setenv("MESHMORPH_BLAS_CHOSEN", "1", 1);
+  if (std::getenv("OPENBLAS_CORETYPE") == nullptr && name != nullptr && strcasecmp(name(), "Prescott") == 0) {
+    const char* core = __builtin_cpu_supports("avx512f") ? "SkylakeX" : __builtin_cpu_supports("avx2") ? "Haswell" : nullptr;
+    if (core != nullptr) {
+      setenv("OPENBLAS_CORETYPE", core, 1);
+      changed = true;
+    }
+  }
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr) {
+    setenv("OMP_WAIT_POLICY", "passive", 1);
+    changed = true;
+  }
+  if (!changed) return;
+  setenv("MESHMORPH_ENVIRONMENT_SET", "1", 1);
   execv("/proc/self/exe", argv);
 }
 
@@ -45,7 +64,7 @@ int report_error(const char* what) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  choose_blas_kernels(argv);
+  set_runtime_environment(argv);
   CLI::App app{"meshmorph: moves the nodes of finite-element meshes and keeps them valid"};
   app.name("meshmorph");
   meshmorph::CommonOptions common;

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include <omp.h>
+
 #include "meshmorph/error.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/io/input_files.h"
@@ -110,7 +112,8 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
   if (report.converged && output) out << "wrote    " << output->string() << "\n";
   else if (output) out << "wrote    no mesh (the goal was not reached)\n";
   char line[64];
-  std::snprintf(line, sizeof line, "time     %.3f s\n", report.seconds);
+  const int threads = omp_get_max_threads();  // the run's (use_method_threads)
+  std::snprintf(line, sizeof line, "time     %.3f s on %d thread%s\n", report.seconds, threads, threads == 1 ? "" : "s");
   out << line;
   return report.converged ? Outcome::GoalReached : Outcome::GoalMissed;
 }
