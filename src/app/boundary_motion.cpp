@@ -49,7 +49,7 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
   targets_.normal = Eigen::MatrixXd::Zero(d, n);
   end_ = mesh.x;
   owner_.assign(mesh.n_nodes(), -1);
-  const std::vector<std::int32_t> index_of_tag = mesh.node_index_of_tag();
+  const std::unordered_map<std::int64_t, std::int32_t> index_of_tag = mesh.node_index_of_tag();
 
   for (std::size_t e = 0; e < c.boundary.size(); ++e) {
     const BoundaryCondition& bc = c.boundary[e];
@@ -98,7 +98,7 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
                    [&](const DisplaceMotion& m) {
                      std::vector<std::uint8_t> given(mesh.n_nodes(), 0);
                      for (std::size_t k = 0; k < m.table.node_tags.size(); ++k) {
-                       const std::int32_t node = index_of_tag[static_cast<std::size_t>(m.table.node_tags[k])];
+                       const std::int32_t node = index_of_tag.at(m.table.node_tags[k]);  // of the group (case_check)
                        given[node] = 1;
                        if (on_boundary[node]) place(node, mesh.x.col(node) + m.table.displacement.col(static_cast<Eigen::Index>(k)));
                      }
@@ -116,6 +116,13 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
     if (owner_[i] >= 0) targets_.role[i] = NodeRole::Prescribed;
   targets_.target = end_;
 
+  // Nodes that stay put whatever slide group they are on: those of a `fixed` group (the rim of
+  // a fixed wall against a sliding one: sliding would take it off the fixed wall), and those
+  // on two slide planes at an angle (below).
+  std::vector<std::uint8_t> held(mesh.n_nodes(), 0);
+  for (const BoundaryCondition& bc : c.boundary)
+    if (std::holds_alternative<FixedMotion>(bc.motion))
+      for (std::int32_t node : mesh.group_nodes(*mesh.find_group(bc.group))) held[node] = 1;
   // Slide groups: the plane through the group's nodes (least squares), which must fit them.
   for (const BoundaryCondition& bc : c.boundary) {
     if (!std::holds_alternative<SlideMotion>(bc.motion)) continue;
@@ -131,11 +138,21 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
       if (std::abs(normal.dot(mesh.x.col(node) - centre)) > 1e-9 * length)
         throw InputError(file + ": " + bc.key_path + ".slide: group \"" + bc.group +
                          "\" is not planar (node " + std::to_string(mesh.node_tags[node]) + " is off its plane)");
-    for (std::int32_t node : nodes)
-      if (on_boundary[node] && targets_.role[node] == NodeRole::Fixed) {
+    for (std::int32_t node : nodes) {
+      if (!on_boundary[node] || held[node]) continue;
+      if (targets_.role[node] == NodeRole::Fixed) {
         targets_.role[node] = NodeRole::Slide;
         targets_.normal.col(node) = normal;
+      } else if (targets_.role[node] == NodeRole::Slide && std::abs(targets_.normal.col(node).dot(normal)) < 1.0 - 1e-9) {
+        // On two planes that meet at an angle (a corner of sliding walls): in 2D their
+        // intersection is the node itself; in 3D it is a line, which one normal cannot hold,
+        // so the node stays put rather than leave either plane. (Sliding on one of them let
+        // the scale-free distortion blow the domain up: corners 10 box sizes away.)
+        targets_.role[node] = NodeRole::Fixed;
+        targets_.normal.col(node).setZero();
+        held[node] = 1;
       }
+    }
   }
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
+#include <cstdint>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "app/detail/json_reader.h"
 #include "meshmorph/app/case_file.h"
@@ -59,16 +61,23 @@ class MeshChecker {
         ls.shape);
   }
 
-  void displacement(const DisplacementTable& t, const JsonWhere& w) const {
+  // Every row is a node of the entry's group: a row elsewhere (a node of a fixed group, an
+  // interior node) is a mistake in the table, not something to apply or to ignore.
+  void displacement(const DisplacementTable& t, const BoundaryCondition& bc, const JsonWhere& w) const {
     if (t.displacement.rows() != mesh_.dim)
       w.fail(t.file.string() + ": expected " + std::to_string(mesh_.dim) + " displacement components per row for a " +
              std::to_string(mesh_.dim) + "D mesh, found " + std::to_string(t.displacement.rows()));
     const auto index = mesh_.node_index_of_tag();
+    std::vector<std::uint8_t> in_group(mesh_.n_nodes(), 0);
+    for (std::int32_t v : mesh_.group_nodes(*mesh_.find_group(bc.group))) in_group[static_cast<std::size_t>(v)] = 1;
     for (std::size_t i = 0; i < t.node_tags.size(); ++i) {
       const std::int64_t tag = t.node_tags[i];
-      if (tag >= static_cast<std::int64_t>(index.size()) || index[static_cast<std::size_t>(tag)] < 0)
-        throw InputError(t.file.string() + ":" + std::to_string(t.line[i]) + ": node " + std::to_string(tag) +
-                         " is not in " + c_.mesh.filename().string() + " (" + c_.file.string() + ": " + w.path + ")");
+      const auto node = index.find(tag);
+      const std::string where = t.file.string() + ":" + std::to_string(t.line[i]) + ": node " + std::to_string(tag);
+      const std::string key = " (" + c_.file.string() + ": " + w.path + ")";
+      if (node == index.end()) throw InputError(where + " is not in " + c_.mesh.filename().string() + key);
+      if (!in_group[static_cast<std::size_t>(node->second)])
+        throw InputError(where + " is not in group \"" + bc.group + "\"" + key);
     }
   }
 
@@ -97,7 +106,7 @@ class MeshChecker {
           } else if constexpr (std::is_same_v<M, ProjectMotion>) {
             level_set(m.target);
           } else if constexpr (std::is_same_v<M, DisplaceMotion>) {
-            displacement(m.table, w.key("displace").key("file"));
+            displacement(m.table, bc, w.key("displace").key("file"));
           }
         },
         bc.motion);

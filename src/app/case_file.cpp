@@ -32,10 +32,13 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
   return {line, column};
 }
 
-// Rejects repeated keys, which nlohmann would silently collapse to the last one.
-class DuplicateKeyGuard {
+// Rejects repeated keys, which nlohmann would silently collapse to the last one, and nesting
+// deeper than any case needs: level sets are read (and CSG trees evaluated) recursively, and
+// 10 000 nested unions overflowed the stack.
+class StructureGuard {
  public:
-  explicit DuplicateKeyGuard(std::string file) : file_(std::move(file)) {}
+  explicit StructureGuard(std::string file) : file_(std::move(file)) {}
+  static constexpr std::size_t k_max_depth = 128;
 
   bool operator()(int, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
@@ -43,6 +46,8 @@ class DuplicateKeyGuard {
         !frames_.back().is_object)
       frames_.back().index = frames_.back().count++;
     if (event == E::object_start || event == E::array_start) {
+      if (frames_.size() == k_max_depth)
+        JsonWhere{file_, path()}.fail("nested more than " + std::to_string(k_max_depth) + " levels deep");
       frames_.push_back({event == E::object_start, {}, {}, 0, 0});
     } else if (event == E::object_end || event == E::array_end) {
       frames_.pop_back();
@@ -110,7 +115,7 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   const std::string name = file.string();
   json root;
   try {
-    root = json::parse(text, DuplicateKeyGuard(name));
+    root = json::parse(text, StructureGuard(name));
   } catch (const json::parse_error& e) {
     const auto [line, column] = line_column(text, e.byte);
     std::string what = e.what();

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/detail/method_output.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
 #include "meshmorph/fem/validity.h"
@@ -23,6 +24,7 @@ Outcome run_check(const std::string& path, std::ostream& out) {
   const CaseFile c = read_case_file(path);
   const Mesh mesh = read_mesh(c.mesh);
   check_case_against_mesh(c, mesh);
+  detail::check_outputs(&c, c.output, c.report);
   const std::size_t inverted = count_invalid_cells(mesh);
 
   out << "case     " << path << "\n"

@@ -62,23 +62,6 @@ DeformOptions read_options(const CaseFile& c, int threads) {
   return o;
 }
 
-// Every row of a `displace` table must be a node of its own group: deform moves the design
-// only, and a row elsewhere is a mistake in the optimizer's output, not something to ignore.
-void check_displacements_on_design(const CaseFile& c, const Mesh& mesh) {
-  const std::vector<std::int32_t> index = mesh.node_index_of_tag();
-  for (const BoundaryCondition& bc : c.boundary) {
-    const auto* m = std::get_if<DisplaceMotion>(&bc.motion);
-    if (!m) continue;
-    std::vector<std::uint8_t> in_group(mesh.n_nodes(), 0);
-    for (std::int32_t v : mesh.group_nodes(*mesh.find_group(bc.group))) in_group[static_cast<std::size_t>(v)] = 1;
-    for (std::size_t k = 0; k < m->table.node_tags.size(); ++k)
-      if (!in_group[static_cast<std::size_t>(index[static_cast<std::size_t>(m->table.node_tags[k])])])
-        throw InputError(m->table.file.string() + ":" + std::to_string(m->table.line[k]) + ": node " +
-                         std::to_string(m->table.node_tags[k]) + " is not on the design group \"" + bc.group + "\" (" +
-                         c.file.string() + ": " + bc.key_path + ".displace.file)");
-  }
-}
-
 // The exact target of nodes moved by `project` (the last step snaps them onto it).
 struct Projections {
   std::vector<LevelSetFunction> level_sets;
@@ -107,7 +90,6 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   const CaseFile c = read_case_file(a.case_file);
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
-  check_displacements_on_design(c, input);
   DeformOptions options = read_options(c, threads);
   if (c.order && *c.order > input.order()) input = elevate_order(input, *c.order);
   options.threads = use_method_threads(threads, static_cast<std::size_t>(input.dim) * input.n_nodes());

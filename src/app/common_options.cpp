@@ -20,7 +20,7 @@ void add_common_options(CLI::App& app, CommonOptions& options) {
   app.set_version_flag("--version", std::string("meshmorph ") + meshmorph_version());
   app.add_option("--threads", options.threads,
                  "Number of threads (default: methods on one thread below 30 000 unknowns, else all cores)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, 1024))  // libgomp fails to start 32 768 threads, and crashed at 65 536
       ->type_name("N");
   auto* quiet = app.add_flag("-q,--quiet", options.quiet, "Print errors only");
   app.add_flag("-v,--verbose", options.verbose, "Print details and progress")->excludes(quiet);

@@ -109,9 +109,11 @@ CaseVector read_vector(const json& j, const JsonWhere& w) {
 }
 
 CaseVector read_direction(const json& j, const JsonWhere& w) {
-  CaseVector v = read_vector(j, w);
-  if (v.norm() == 0) w.fail("expected a non-zero vector");
-  return v;
+  const CaseVector v = read_vector(j, w);
+  // stableNorm: |(1e308, 1e308)| overflows in norm(), and v / inf is the zero vector.
+  const double length = v.stableNorm();
+  if (!(length > 0)) w.fail("expected a non-zero vector");
+  return v / length;
 }
 
 }  // namespace meshmorph::detail

@@ -44,6 +44,10 @@ void check_expression(const std::string& expression, const JsonWhere& w) {
     parser.SetExpr(expression);
     // muparser parses lazily: the first evaluation reports syntax and name errors.
     (void)parser.Eval();
+    // "x, y" is two expressions to muparser, of which σ would silently be the last.
+    if (parser.GetNumResults() != 1)
+      w.fail("expression \"" + expression + "\" gives " + std::to_string(parser.GetNumResults()) +
+             " values (separated by commas); a level set is one");
   } catch (const mu::Parser::exception_type& e) {
     w.fail("invalid expression \"" + expression + "\": " + e.GetMsg() + " (at character " +
            std::to_string(e.GetPos() + 1) + ")");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <system_error>
 
 #include <omp.h>
 
@@ -49,6 +50,13 @@ std::filesystem::path step_path(const std::filesystem::path& out, int step) {
 void check_outputs(const std::vector<OutputFile>& outputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const OutputFile& o = outputs[i];
+    // Where a later output cannot be written, an earlier one must not be either.
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.path, ec))
+      throw InputError(o.label + ": " + o.path.string() + " is a folder, not a file");
+    const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
+    if (!std::filesystem::is_directory(folder, ec))
+      throw InputError(o.label + ": " + o.path.string() + ": no folder " + folder.string());
     if (const auto input = o.named ? std::nullopt : input_file_at(o.path))
       throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
                        "), which only an output you name yourself may replace");

@@ -35,7 +35,7 @@ class Checker {
   }
   void direction(const Vec& v, const char* key) const {
     vector(v, key);
-    if (v.norm() == 0) fail(key, "expected a non-zero direction");
+    if (!(v.stableNorm() > 0)) fail(key, "expected a non-zero direction");
   }
   void positive(double v, const char* key) const {
     if (!(v > 0) || !std::isfinite(v)) fail(key, "expected a positive number, found " + std::to_string(v));

@@ -62,7 +62,7 @@ class Sphere final : public LevelSetNode {
 
 class Cylinder final : public LevelSetNode {
  public:
-  Cylinder(Vec c, Vec axis, double r) : c_(std::move(c)), a_(axis.normalized()), r_(r) {}
+  Cylinder(Vec c, Vec axis, double r) : c_(std::move(c)), a_(axis.stableNormalized()), r_(r) {}
   double value(const Vec& x) const override { return ((x - c_) - (x - c_).dot(a_) * a_).norm() - r_; }
   double value_gradient(const Vec& x, Vec& g) const override {
     const Vec v = radial(x);
@@ -98,7 +98,7 @@ class Cylinder final : public LevelSetNode {
 
 class Plane final : public LevelSetNode {
  public:
-  Plane(Vec p, Vec n) : p_(std::move(p)), n_(n.normalized()) {}
+  Plane(Vec p, Vec n) : p_(std::move(p)), n_(n.stableNormalized()) {}
   double value(const Vec& x) const override { return (x - p_).dot(n_); }
   double value_gradient(const Vec& x, Vec& g) const override {
     g = n_;
@@ -177,7 +177,7 @@ class Box final : public LevelSetNode {
 class Torus final : public LevelSetNode {
  public:
   Torus(Vec c, Vec axis, double major, double minor)
-      : c_(std::move(c)), a_(axis.normalized()), R_(major), r_(minor) {}
+      : c_(std::move(c)), a_(axis.stableNormalized()), R_(major), r_(minor) {}
   double value(const Vec& x) const override { return (x - core_point(x)).norm() - r_; }
   double value_gradient(const Vec& x, Vec& g) const override {
     const Vec k = core_point(x);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <system_error>
 
 namespace meshmorph {
 
@@ -41,8 +43,9 @@ std::optional<PhysicalGroup> Mesh::find_group(const std::string& key) const {
       if (numeric ? std::to_string(g.tag) == key : g.name == key) return g;
     }
   }
-  if (numeric) {  // a tag used by elements but without a $PhysicalNames entry
-    const auto tag = std::stoi(key);
+  // A tag used by elements but without a $PhysicalNames entry (a number past int: none).
+  int tag = 0;
+  if (numeric && std::from_chars(key.data(), key.data() + key.size(), tag).ec == std::errc()) {
     for (int d : preference) {
       const auto& blocks = d == dim ? cells : facets;
       for (const auto& b : blocks) {
@@ -70,12 +73,11 @@ std::vector<std::int32_t> Mesh::group_nodes(const PhysicalGroup& group) const {
   return out;
 }
 
-std::vector<std::int32_t> Mesh::node_index_of_tag() const {
-  std::int64_t max_tag = 0;
-  for (auto t : node_tags) max_tag = std::max(max_tag, t);
-  std::vector<std::int32_t> index(static_cast<std::size_t>(max_tag + 1), -1);
+std::unordered_map<std::int64_t, std::int32_t> Mesh::node_index_of_tag() const {
+  std::unordered_map<std::int64_t, std::int32_t> index;
+  index.reserve(node_tags.size());
   for (std::size_t i = 0; i < node_tags.size(); ++i)
-    if (node_tags[i] > 0) index[static_cast<std::size_t>(node_tags[i])] = static_cast<std::int32_t>(i);
+    if (node_tags[i] > 0) index.emplace(node_tags[i], static_cast<std::int32_t>(i));
   return index;
 }
 

@@ -60,6 +60,7 @@ class CaseCheck : public ::testing::Test {
     dir_.write("d2.csv", "node,dx,dy\n1,0.1,0\n2,0.1,0\n");
     dir_.write("d3.csv", "1,0,0,0\n");
     dir_.write("far.csv", "1,0,0\n\n9,0,0\n");
+    dir_.write("other.csv", "1,0,0\n3,0,0\n");
   }
   // The message of check_case_against_mesh (or of the parser), "" when the case passes.
   std::string error_of(const std::string& body, const Mesh& mesh) const {
@@ -121,6 +122,10 @@ TEST_F(CaseCheck, DisplacementNodesAndComponentsMatchTheMesh) {
   const std::string far = (dir_.path() / "far.csv").string();
   EXPECT_EQ(error_of(R"("boundary": [{"group": "inner", "displace": {"file": "far.csv"}}])", unit_square()),
             far + ":3: node 9 is not in m.msh (" + prefix() + "boundary[0].displace.file)");
+  // A node of the mesh, but of another group: an error too, not a motion of a fixed node.
+  const std::string other = (dir_.path() / "other.csv").string();
+  EXPECT_EQ(error_of(R"("boundary": [{"group": "inner", "displace": {"file": "other.csv"}}])", unit_square()),
+            other + ":2: node 3 is not in group \"inner\" (" + prefix() + "boundary[0].displace.file)");
   const std::string e = error_of(R"("boundary": [{"group": "inner", "displace": {"file": "d3.csv"}}])", unit_square());
   EXPECT_EQ(e.rfind(prefix() + "boundary[0].displace.file: ", 0), 0u) << e;
   EXPECT_NE(e.find("expected 2 displacement components per row for a 2D mesh, found 3"), std::string::npos) << e;

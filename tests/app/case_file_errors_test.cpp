@@ -95,6 +95,8 @@ const BadCase kBadCases[] = {
     {"ExprUnknownName", R"({M, "interface": {"expr": "x + w"}})", "interface.expr: invalid expression \"x + w\": "},
     {"ExprUnknownFunction", R"j({M, "interface": {"expr": "foo(x)"}})j", "interface.expr: invalid expression"},
     {"ExprEmpty", R"({M, "interface": {"expr": "  "}})", "interface.expr: empty expression"},
+    {"ExprTwoValues", R"({M, "interface": {"expr": "x, y"}})",
+     "interface.expr: expression \"x, y\" gives 2 values (separated by commas); a level set is one"},
     {"ExprNumber", R"({M, "interface": {"expr": 3}})", "interface.expr: expected an expression string"},
     {"BlendOnSphere", R"({M, "interface": {"sphere": {"center": [0,0], "radius": 1}, "blend": 0.1}})",
      "interface.blend: \"blend\" goes with \"union\", \"intersection\" or \"difference\", not \"sphere\""},

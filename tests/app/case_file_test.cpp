@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/app/case_file.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "app/temp_dir.h"
@@ -126,6 +128,19 @@ TEST_F(CaseFileTest, AcceptsTwoDimensionalVectorsAndRotationWithoutAxis) {
   EXPECT_EQ(rot.degrees, -120.5);
 }
 
+// Axes and normals are directions: unit vectors, also where |v| overflows or underflows.
+TEST_F(CaseFileTest, DirectionsAreUnitVectorsWhateverTheirLength) {
+  const CaseFile c = parse(R"({"mesh": "m.msh", "boundary": [
+      {"group": "blades", "rotate": {"center": [0, 0, 0], "axis": [0, 0, 1e-320], "degrees": 72}},
+      {"group": "lid", "project": {"plane": {"point": [0, 0, 0], "normal": [1e308, 1e308, 0]}}}]})");
+  const CaseVector& axis = *std::get<RotateMotion>(c.boundary[0].motion).axis;
+  EXPECT_EQ(axis, Eigen::Vector3d(0, 0, 1));
+  const auto& plane = std::get<PlaneLevelSet>(std::get<ProjectMotion>(c.boundary[1].motion).target.shape);
+  EXPECT_NEAR(plane.normal[0], std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(plane.normal[1], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(plane.normal[2], 0.0);
+}
+
 TEST_F(CaseFileTest, ReadsTheCaseFromDiskWithPathsRelativeToIt) {
   const auto file = dir_.write("sub/case.json", R"({"mesh": "../m.msh", "output": "o.msh"})");
   const CaseFile c = read_case_file(file);
@@ -154,6 +169,20 @@ TEST_F(CaseFileTest, SyntaxErrorsNameLineAndColumn) {
 TEST_F(CaseFileTest, NumbersTooLargeForADoubleNameTheirPlace) {
   const std::string e = error_of("{\"mesh\": \"m.msh\",\n \"steps\": 1e999}");
   EXPECT_NE(e.find("case.json:2:11: invalid JSON: number out of range: 1e999"), std::string::npos) << e;
+}
+
+// Level sets are read and evaluated recursively: a CSG tree of `levels` unions of one sphere.
+std::string nested_unions(int levels) {
+  std::string ls = R"({"sphere": {"center": [0, 0], "radius": 1}})";
+  for (int i = 0; i < levels; ++i) ls = R"({"union": [)" + ls + "]}";
+  return R"({"mesh": "m.msh", "interface": )" + ls + "}";
+}
+
+TEST_F(CaseFileTest, NestingDeeperThanACaseNeedsIsRejectedBeforeItIsRead) {
+  EXPECT_EQ(error_of(nested_unions(60)), "");
+  const std::string e = error_of(nested_unions(10000));
+  EXPECT_EQ(e.rfind((dir_.path() / "case.json").string() + ": interface.union[0].union[0].", 0), 0u) << e.substr(0, 200);
+  EXPECT_NE(e.find(": nested more than 128 levels deep"), std::string::npos) << e.substr(0, 200);
 }
 
 TEST_F(CaseFileTest, DuplicateKeysAreRejectedWithTheirPath) {

@@ -70,7 +70,7 @@ expect no_group 2 'no physical group "cylinder"'
 first_far=$(awk '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == 2 {print $6; exit}' "$mesh")
 { cat "$work/bump.csv"; echo "$first_far,0.1,0"; } > "$work/off_design.csv"
 make_case off_design '[{"group": "obstacle", "displace": {"file": "off_design.csv"}}, {"group": "farfield", "fixed": true}]'
-expect off_design 2 "node $first_far is not on the design group"
+expect off_design 2 "node $first_far is not in group \"obstacle\""
 make_case unknown_option "[$design]" '{"gamma": 1}'
 expect unknown_option 2 "options.gamma"
 make_case nothing_moves '[{"group": "farfield", "fixed": true}]'

@@ -41,9 +41,17 @@ make_case unknown_group '[{"group": "rotor", "translate": [1, 0]}]'
 expect unknown_group 2 "rotor"
 make_case unreachable '[{"group": "inner", "project": {"expr": "x^2 + y^2 + 1"}}]'
 expect unreachable 2 "cannot reach"
-printf 'node,dx,dy\n1,0.1,0\n' > "$work/short.csv"
+# One row, for a node of the inner circle (physical group 2): the other nodes of the group have none.
+"$mm" --quiet convert "$mesh" "$work/annulus22.msh" --msh22 || fail "convert to MSH 2.2"
+inner_node=$(awk '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == 2 {print $6; exit}' "$work/annulus22.msh")
+printf 'node,dx,dy\n%s,0.1,0\n' "$inner_node" > "$work/short.csv"
 make_case missing_row "[{\"group\": \"inner\", \"displace\": {\"file\": \"short.csv\"}}]"
 expect missing_row 2 "has no row for node"
+# A row for a node of the fixed outer circle: an error, not a motion of a fixed node.
+outer_node=$(awk '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == 1 {print $6; exit}' "$work/annulus22.msh")
+printf 'node,dx,dy\n%s,0.1,0\n' "$outer_node" > "$work/other_group.csv"
+make_case other_group "[{\"group\": \"inner\", \"displace\": {\"file\": \"other_group.csv\"}}]"
+expect other_group 2 "node $outer_node is not in group \"inner\""
 make_case bad_finish "$rotate" '{"finish": "sideways"}'
 expect bad_finish 2 "finish"
 make_case budget "$rotate" '{"max_outer": 1}'
@@ -51,10 +59,10 @@ expect budget 1 "augmented-Lagrangian iterations"
 [ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
 make_case laplace '[{"group": "inner", "rotate": {"center": [0, 0], "degrees": 120}}]' '{"method": "laplace"}'
 expect laplace 1 "inverted elements"
-for name in unknown_group unreachable missing_row bad_finish budget laplace; do
+for name in unknown_group unreachable missing_row other_group bad_finish budget laplace; do
   [ ! -e "$work/$name.vtu" ] || fail "$name: a mesh was written"
 done
-for name in unknown_group unreachable missing_row bad_finish; do
+for name in unknown_group unreachable missing_row other_group bad_finish; do
   [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
 done
 # A file written by the run never replaces an input that the user did not name as the output
@@ -67,11 +75,22 @@ own() {  # own NAME OUTPUT REPORT [EXTRA]: a case on the copy own_0001.msh of th
 }
 own steps own.msh steps.json '"steps": 2, "output_each_step": true, '
 own twice twice.vtu ./twice.vtu
+# An output that cannot be written stops the run before the others are: a report in a missing
+# folder, a report path that is a folder, a step file that is a folder.
+own nofolder nofolder.vtu nodir/nofolder.json
+mkdir -p "$work/afolder.json" "$work/sf_0001.vtu"
+own folder folder.vtu afolder.json
+own stepfolder sf.vtu stepfolder.json '"steps": 2, "output_each_step": true, '
 before=$(cksum < "$work/own_0001.msh")
 expect steps 2 "only an output you name"
 expect twice 2 "a path of its own"
+expect nofolder 2 "nodir/nofolder.json: no folder"
+expect folder 2 "afolder.json is a folder"
+expect stepfolder 2 "sf_0001.vtu is a folder"
 [ "$(cksum < "$work/own_0001.msh")" = "$before" ] || fail "the input mesh was changed"
-for f in own.msh steps.json twice.vtu; do [ ! -e "$work/$f" ] || fail "$f was written"; done
+for f in own.msh steps.json twice.vtu nofolder.vtu folder.vtu sf.vtu stepfolder.json; do
+  [ ! -e "$work/$f" ] || fail "$f was written"
+done
 own named own_0001.msh named.json  # named by the user: replaced
 expect named 0
 [ "$(cksum < "$work/own_0001.msh")" != "$before" ] || fail "named: the output was not written"

@@ -29,7 +29,9 @@ convert $quads $work/out/a.msh --order 4|--order 4 is above the highest for quad
 convert $work/none.msh $work/out/a.msh|none.msh
 quality|MESH is required
 quality $mesh -o $work/out/q.msh|expected a .vtu file
-quality $mesh --threads 0|threads
+quality $mesh --threads 0|--threads: Value 0 not in range 1 to 1024
+quality $mesh --threads 65536|--threads: Value 65536 not in range 1 to 1024
+quality $mesh --json $work/out/q.json -o $work/nodir/q.vtu|nodir/q.vtu: no folder
 quality $mesh --quiet --verbose|
 CASES
 echo "$failures failures"

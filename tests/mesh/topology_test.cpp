@@ -77,9 +77,19 @@ TEST(Mesh, FindsGroupsByNameAndNumberAndListsTheirNodes) {
   EXPECT_EQ(m.find_group("7")->name, "domain");
   EXPECT_FALSE(m.find_group("wall"));
   EXPECT_FALSE(m.find_group("99"));
+  EXPECT_FALSE(m.find_group("4294967297"));  // past int
+  EXPECT_FALSE(m.find_group("99999999999999999999999"));
   const auto index = m.node_index_of_tag();
-  EXPECT_EQ(index[30], 2);
-  EXPECT_EQ(index[25], -1);
+  EXPECT_EQ(index.at(30), 2);
+  EXPECT_FALSE(index.contains(25));
+}
+
+TEST(Mesh, NodeTagsMayBeSparseAndLarge) {
+  auto m = two_triangles();
+  m.node_tags[1] = std::int64_t{1} << 62;  // MSH 4.1 allows size_t tags
+  const auto index = m.node_index_of_tag();
+  EXPECT_EQ(index.at(std::int64_t{1} << 62), 1);
+  EXPECT_EQ(index.size(), m.n_nodes());
 }
 
 TEST(Mesh, MaxCellNodesTakesTheDensestBlockOfTheMeshDimension) {

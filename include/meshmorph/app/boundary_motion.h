@@ -15,7 +15,9 @@ namespace meshmorph {
 /// the prescribed motion as a path x(t), t ∈ [0, 1], for time series (`steps`).
 ///
 /// Roles: nodes of a moving group (translate, rotate, scale, project, displace) are
-/// Prescribed; nodes of a `slide` group not in a moving group slide on the group's plane;
+/// Prescribed; nodes of a `slide` group slide on the group's plane, unless they are in a
+/// moving group, in a `fixed` group, or on a second slide plane at an angle to the first
+/// (then Fixed: the planes' intersection is a point in 2D, and a line, not held, in 3D);
 /// every other boundary node (listed as `fixed` or not listed) is Fixed; interior nodes are
 /// Free, also when a listed group contains them. A node in two moving groups must get the same
 /// target from both (within 1e-12 of the mesh size), else InputError.

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -68,8 +69,8 @@ struct Mesh {
   std::optional<PhysicalGroup> find_group(const std::string& key) const;
   /// Sorted, unique node indices of all elements (cells and facets) tagged with `group`.
   std::vector<std::int32_t> group_nodes(const PhysicalGroup& group) const;
-  /// Index of each node tag: tag → node index, or -1 (dense table up to the largest tag).
-  std::vector<std::int32_t> node_index_of_tag() const;
+  /// Node index of each node tag (tags may be sparse and as large as MSH allows).
+  std::unordered_map<std::int64_t, std::int32_t> node_index_of_tag() const;
 };
 
 }  // namespace meshmorph

@@ -38,9 +38,10 @@ struct OutputFile {
   bool named = true;
 };
 
-/// Throws InputError, before anything is written, where two outputs share a file (the later
-/// would replace the earlier) or a derived output is a file the run read: DESIGN §3.1 lets an
-/// input be replaced only where the user names it as the output.
+/// Throws InputError, before anything is written, where an output is a folder or its folder
+/// does not exist, two outputs share a file (the later would replace the earlier) or a
+/// derived output is a file the run read: DESIGN §3.1 lets an input be replaced only where the
+/// user names it as the output.
 void check_outputs(const std::vector<OutputFile>& outputs);
 
 /// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
