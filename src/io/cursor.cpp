@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <system_error>
 
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
@@ -10,6 +11,9 @@
 namespace meshmorph::detail {
 
 std::string read_file(const std::filesystem::path& path) {
+  // An ifstream opens a folder too, and gives its size as LLONG_MAX.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a folder, not a mesh file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open for reading");
   note_input_file(path);

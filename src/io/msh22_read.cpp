@@ -43,9 +43,9 @@ void read_msh22_elements(MshState& s) {
   s.check_count(n, s.binary ? 12 : 8, c.token_start());
   std::vector<std::int64_t> tags;
   CellBlock* block = nullptr;
-  int block_code = -1;
+  int block_code = 0;  // the type of *block, once set (no sentinel: a file may hold any int)
   auto use_type = [&](int code, std::size_t at) {
-    if (code == block_code) return;
+    if (block != nullptr && code == block_code) return;
     const FamilyOrder fo = s.element_type(code, at);
     block = &s.builder.block(fo.type, fo.order);
     block_code = code;

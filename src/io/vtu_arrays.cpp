@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <type_traits>
 
 #include <zlib.h>
@@ -62,11 +64,17 @@ std::optional<std::uint64_t> header_value(const VtuFile& f, std::string_view byt
   return v;
 }
 
-// Header + data bytes (as stored) → the array's uncompressed payload.
-std::string payload(const VtuFile& f, const pugi::xml_node& node, std::string_view bytes) {
+// Header + data bytes (as stored) → the array's uncompressed payload, of at most `max_bytes`.
+std::string payload(const VtuFile& f, const pugi::xml_node& node, std::string_view bytes, std::uint64_t max_bytes) {
+  const std::string name = node.attribute("Name").as_string();
+  const auto too_large = [&](std::uint64_t announced) {
+    f.fail(node, "DataArray '" + name + "' header announces " + std::to_string(announced) + " bytes, expected at most " +
+                     std::to_string(max_bytes));
+  };
   std::size_t pos = 0;
   if (!f.compressed) {
     const auto n = header_value(f, bytes, pos);
+    if (n && *n > max_bytes) too_large(*n);
     if (!n || bytes.size() - pos < *n) f.fail(node, "binary DataArray is shorter than its byte-count header");
     return std::string(bytes.substr(pos, *n));
   }
@@ -81,16 +89,28 @@ std::string payload(const VtuFile& f, const pugi::xml_node& node, std::string_vi
     if (!v) f.fail(node, "truncated compression header in DataArray");
     c = *v;
   }
-  std::string out;
+  // Every size is checked before the output is allocated. zlib's ratio is 1032:1 at most,
+  // which also keeps the total from overflowing.
+  const auto raw_size = [&](std::uint64_t b) { return b + 1 == *n_blocks && *last_size != 0 ? *last_size : *block_size; };
+  std::uint64_t total = 0;
+  std::size_t end = pos;
   for (std::uint64_t b = 0; b < *n_blocks; ++b) {
-    const std::uint64_t raw = (b + 1 == *n_blocks && *last_size != 0) ? *last_size : *block_size;
-    if (raw > (std::uint64_t{1} << 40) || csize[b] > bytes.size() - pos) f.fail(node, "compressed block exceeds the data");
-    const std::size_t start = out.size();
-    out.resize(start + raw);
-    uLongf dest = static_cast<uLongf>(raw);
+    if (csize[b] > bytes.size() - end) f.fail(node, "compressed block exceeds the data");
+    end += csize[b];
+    if (raw_size(b) > 1032 * csize[b])
+      f.fail(node, "DataArray '" + name + "' block " + std::to_string(b) + " announces " + std::to_string(raw_size(b)) +
+                       " bytes, more than its " + std::to_string(csize[b]) + " compressed bytes can inflate to");
+    total += raw_size(b);
+  }
+  if (total > max_bytes) too_large(total);
+  std::string out(total, '\0');
+  std::size_t start = 0;
+  for (std::uint64_t b = 0; b < *n_blocks; ++b) {
+    uLongf dest = static_cast<uLongf>(raw_size(b));
     const int rc = uncompress(reinterpret_cast<Bytef*>(out.data() + start), &dest,
                               reinterpret_cast<const Bytef*>(bytes.data() + pos), static_cast<uLong>(csize[b]));
-    if (rc != Z_OK || dest != raw) f.fail(node, "zlib cannot decompress DataArray block " + std::to_string(b));
+    if (rc != Z_OK || dest != raw_size(b)) f.fail(node, "zlib cannot decompress DataArray block " + std::to_string(b));
+    start += dest;
     pos += csize[b];
   }
   return out;
@@ -98,10 +118,8 @@ std::string payload(const VtuFile& f, const pugi::xml_node& node, std::string_vi
 
 }  // namespace
 
-// Values of a DataArray converted to T; `expected` values (or any count when unset).
 template <class T>
-std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected,
-                          bool allow_nonfinite) {
+std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, ValueCount count, bool allow_nonfinite) {
   const std::string_view name = node.attribute("Name").as_string();
   const std::string_view type = node.attribute("type").as_string();
   const std::string_view format = node.attribute("format").as_string("ascii");
@@ -109,6 +127,9 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::opt
   if (size == 0) f.fail(node, "DataArray '" + std::string(name) + "' has unknown type '" + std::string(type) + "'");
   const bool is_float = type.starts_with("Float");
   if (std::is_integral_v<T> && is_float) f.fail(node, "DataArray '" + std::string(name) + "' must hold integers");
+  const std::uint64_t max_bytes = count.n > std::numeric_limits<std::uint64_t>::max() / size
+                                       ? std::numeric_limits<std::uint64_t>::max()
+                                       : count.n * size;
   std::vector<T> values;
   if (format == "ascii") {
     const std::string_view body = node.text().get();
@@ -128,7 +149,7 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::opt
     if (format == "binary") {
       auto decoded = base64_decode(node.text().get(), bad);
       if (!decoded) f.fail(node, "DataArray '" + std::string(name) + "': invalid base64 data");
-      bytes = payload(f, node, *decoded);
+      bytes = payload(f, node, *decoded, max_bytes);
     } else if (format == "appended") {
       if (f.appended == std::string_view::npos) f.fail(node, "format=\"appended\" but there is no AppendedData");
       const std::size_t offset = node.attribute("offset").as_ullong(~0ull);
@@ -139,9 +160,9 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::opt
       if (f.appended_base64) {
         auto decoded = base64_decode(region, bad);
         if (!decoded) f.fail(node, "DataArray '" + std::string(name) + "': invalid base64 in AppendedData");
-        bytes = payload(f, node, *decoded);
+        bytes = payload(f, node, *decoded, max_bytes);
       } else {
-        bytes = payload(f, node, region);
+        bytes = payload(f, node, region, max_bytes);
       }
     } else {
       f.fail(node, "DataArray '" + std::string(name) + "' has unknown format '" + std::string(format) + "'");
@@ -154,14 +175,13 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::opt
       for (const T v : values)
         if (!std::isfinite(v)) f.fail(node, "DataArray '" + std::string(name) + "' holds a non-finite value");
   }
-  if (expected && values.size() != *expected)
+  if (count.exact ? values.size() != count.n : values.size() > count.n)
     f.fail(node, "DataArray '" + std::string(name) + "' holds " + std::to_string(values.size()) + " values, expected " +
-                     std::to_string(*expected));
+                     (count.exact ? "" : "at most ") + std::to_string(count.n));
   return values;
 }
 
-template std::vector<double> read_array<double>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>, bool);
-template std::vector<std::int64_t> read_array<std::int64_t>(const VtuFile&, const pugi::xml_node&, std::optional<std::size_t>,
-                                                            bool);
+template std::vector<double> read_array<double>(const VtuFile&, const pugi::xml_node&, ValueCount, bool);
+template std::vector<std::int64_t> read_array<std::int64_t>(const VtuFile&, const pugi::xml_node&, ValueCount, bool);
 
 }  // namespace meshmorph::detail

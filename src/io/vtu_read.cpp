@@ -21,6 +21,8 @@
 namespace meshmorph {
 namespace {
 
+using detail::at_most;
+using detail::exactly;
 using detail::read_array;
 using detail::VtuFile;
 
@@ -32,8 +34,9 @@ pugi::xml_node named_array(const pugi::xml_node& parent, std::string_view name) 
 
 // Integer tags per cell; float arrays are accepted when every value is an integer.
 std::vector<std::int64_t> read_tags(const VtuFile& f, const pugi::xml_node& node, std::size_t n) {
-  if (!std::string_view(node.attribute("type").as_string()).starts_with("Float")) return read_array<std::int64_t>(f, node, n);
-  const std::vector<double> v = read_array<double>(f, node, n);
+  if (!std::string_view(node.attribute("type").as_string()).starts_with("Float"))
+    return read_array<std::int64_t>(f, node, exactly(n));
+  const std::vector<double> v = read_array<double>(f, node, exactly(n));
   std::vector<std::int64_t> tags(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 2e9)
@@ -91,7 +94,7 @@ void read_point_data(const VtuFile& f, const pugi::xml_node& piece, std::size_t 
     auto it = builder.node_fields.find(name);
     if (!first_piece && it == builder.node_fields.end())
       f.fail(a, "PointData array '" + name + "' is missing in the first Piece");
-    const std::vector<double> values = read_array<double>(f, a, n_points, true);
+    const std::vector<double> values = read_array<double>(f, a, exactly(n_points), true);
     if (first_piece) it = builder.node_fields.emplace(name, std::vector<double>{}).first;
     it->second.insert(it->second.end(), values.begin(), values.end());
   }
@@ -110,7 +113,7 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
   const pugi::xml_node points = piece.child("Points").child("DataArray");
   if (!points) f.fail(piece, "Piece has no Points DataArray");
   if (points.attribute("NumberOfComponents").as_int(1) != 3) f.fail(points, "Points must have 3 components");
-  const std::vector<double> xyz = read_array<double>(f, points, 3 * np);
+  const std::vector<double> xyz = read_array<double>(f, points, exactly(3 * np));
   const std::int64_t base = static_cast<std::int64_t>(builder.tags.size());
   for (std::size_t j = 0; j < np; ++j) {
     builder.tags.push_back(base + static_cast<std::int64_t>(j) + 1);
@@ -126,9 +129,11 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
   const pugi::xml_node type_node = named_array(cells, "types");
   if (!conn_node || !off_node || !type_node)
     f.fail(cells ? cells : piece, "Cells needs DataArrays 'connectivity', 'offsets' and 'types'");
-  const auto offsets = read_array<std::int64_t>(f, off_node, nc);
-  const auto types = read_array<std::int64_t>(f, type_node, nc);
-  const auto conn = read_array<std::int64_t>(f, conn_node, std::nullopt);
+  const auto offsets = read_array<std::int64_t>(f, off_node, exactly(nc));
+  const auto types = read_array<std::int64_t>(f, type_node, exactly(nc));
+  // A cell has at most the nodes of a hexahedron of order 4 (the highest order read).
+  const auto max_cell_nodes = static_cast<std::size_t>(n_nodes_of(ElementType::Hexahedron, 4));
+  const auto conn = read_array<std::int64_t>(f, conn_node, at_most(nc * max_cell_nodes));
   std::vector<std::int64_t> physical(nc, 0), entity(nc, 0);
   const pugi::xml_node cell_data = piece.child("CellData");
   for (const char* name : {"group", "material", "attribute", "gmsh:physical"})
@@ -239,7 +244,7 @@ Mesh read_vtu(const std::filesystem::path& path) {
   for (pugi::xml_node a : grid.child("FieldData").children("DataArray")) {
     const std::string_view type = a.attribute("type").as_string();
     if (!type.starts_with("Int") && !type.starts_with("UInt")) continue;  // TimeValue, strings, ...
-    const auto v = read_array<std::int64_t>(f, a, std::nullopt);
+    const auto v = read_array<std::int64_t>(f, a, detail::ValueCount{});  // any length
     if (v.size() == 2 && v[1] >= 0 && v[1] <= 3)
       builder.named_groups.push_back(PhysicalGroup{static_cast<int>(v[1]), static_cast<std::int32_t>(v[0]), a.attribute("Name").as_string()});
   }

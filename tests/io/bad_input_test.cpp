@@ -38,6 +38,8 @@ const std::map<std::string, std::string>& expected_reasons() {
       {"msh22_node_data_truncated.msh", "line 28: expected node tag (an integer), got '$EndNodeData'"},
       {"msh22_binary_cut.msh", "byte offset"},
       {"msh22_binary_cut_elements.msh", "byte offset"},
+      {"msh22_binary_element_type_minus1.msh", "byte offset 184: unsupported element type -1"},
+      {"msh22_element_type_minus1.msh", "line 13: unsupported element type -1"},
       {"msh22_prism.msh", "prism element type 6"},
       {"msh22_truncated.msh", "line 12: count 2 is larger than the rest of the file can hold"},
       {"msh22_wrong_element_count.msh", "expected element tag"},
@@ -83,6 +85,8 @@ const std::map<std::string, std::string>& expected_reasons() {
       {"vtu_too_few_points.vtu", "holds 9 values, expected 12"},
       {"vtu_unknown_cell_type.vtu", "unsupported VTK cell type 42 (cell 1)"},
       {"vtu_wrong_lagrange_point_count.vtu", "has 7 points, which is no complete Lagrange cell"},
+      {"vtu_zlib_block_size_4GB.vtu", "line 6: DataArray 'Points' block 0 announces 4294967280 bytes"},
+      {"vtu_zlib_last_size_2e40.vtu", "line 6: DataArray 'Points' block 0 announces 1099511627776 bytes"},
   };
   return m;
 }
@@ -114,6 +118,24 @@ TEST(BadInput, EveryFileGivesInputErrorNamingFileAndPosition) {
 TEST(BadInput, UnknownExtensionAndMissingFile) {
   EXPECT_THROW(read_mesh("mesh.stl"), InputError);
   EXPECT_THROW(read_mesh(fs::path(MESHMORPH_TEST_DATA) / "bad" / "does_not_exist.msh"), IoError);
+}
+
+// A folder opens as a stream whose size is LLONG_MAX: it used to end in std::bad_alloc.
+TEST(BadInput, FolderIsAnIoErrorNamingIt) {
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_folder_" + std::to_string(::getpid()));
+  for (const char* name : {"a.msh", "a.vtu", "a.mesh"}) {
+    SCOPED_TRACE(name);
+    fs::create_directories(dir / name);
+    try {
+      read_mesh(dir / name);
+      ADD_FAILURE() << "no exception";
+    } catch (const IoError& e) {
+      EXPECT_EQ(std::string(e.what()), (dir / name).string() + ": is a folder, not a mesh file");
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not an IoError: " << e.what();
+    }
+  }
+  fs::remove_all(dir);
 }
 
 // Every prefix of a valid file is either an InputError naming a position or (Medit, whose

@@ -3,11 +3,13 @@
 // with and without zlib compression, UInt32 and UInt64 headers, several pieces.
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <pugixml.hpp>
@@ -183,6 +185,79 @@ TEST(VtuEncodings, AppendedRawBase64AndZlibAllReadTheSameMesh) {
   EXPECT_EQ(two.cells[0].nodes[m.cells[0].nodes.size()], m.cells[0].nodes[0] + static_cast<std::int32_t>(m.n_nodes()));
   ASSERT_EQ(two.node_fields.count("pd_phi"), 1u);
   EXPECT_EQ(two.node_fields.at("pd_phi").tail(static_cast<Eigen::Index>(m.n_nodes())), unnamed.node_fields.at("pd_phi"));
+  fs::remove_all(dir);
+}
+
+// One triangle whose Points (3 × 3 Float64) are `stored` (header and data) inline or appended;
+// the other arrays are ascii.
+std::string triangle_vtu(const std::string& stored, Mode mode, bool header64, bool compressed) {
+  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\"";
+  xml += std::string(" header_type=\"") + (header64 ? "UInt64" : "UInt32") + "\"";
+  if (compressed) xml += " compressor=\"vtkZLibDataCompressor\"";
+  xml += ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n<Points>\n";
+  xml += "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"";
+  std::string text;
+  detail::base64_encode(stored, text);
+  xml += mode == Mode::Inline ? " format=\"binary\">" + text + "</DataArray>\n" : " format=\"appended\" offset=\"0\"/>\n";
+  xml += "</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\">0 1 2</DataArray>\n"
+         "<DataArray type=\"Int64\" Name=\"offsets\">3</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\">5</DataArray>\n"
+         "</Cells>\n</Piece>\n</UnstructuredGrid>\n";
+  if (mode == Mode::AppendedRaw) xml += "<AppendedData encoding=\"raw\">\n   _" + stored + "\n</AppendedData>\n";
+  if (mode == Mode::AppendedBase64) xml += "<AppendedData encoding=\"base64\">\n   _" + text + "\n</AppendedData>\n";
+  return xml + "</VTKFile>\n";
+}
+
+// The sizes a header announces are checked before anything is allocated: against the bytes the
+// array needs, and against what its zlib blocks can inflate to (1032:1 at most). A 4 GB block
+// in a 1 kB file used to be allocated, a 2^40-byte one threw std::bad_alloc.
+TEST(VtuEncodings, HeaderSizesAreCheckedBeforeAllocating) {
+  const std::string points = bytes_of<double>("0 0 0 1 0 0 0 1 0");  // 72 bytes
+  uLongf size = compressBound(points.size());
+  std::string z(size, '\0');
+  ASSERT_EQ(compress(reinterpret_cast<Bytef*>(z.data()), &size, reinterpret_cast<const Bytef*>(points.data()), points.size()),
+            Z_OK);
+  z.resize(size);
+  const std::string zsize = std::to_string(z.size());
+  struct Case {
+    std::string stored;
+    bool header64, compressed;
+    std::string error;  // empty: the file is valid
+  };
+  const auto h32 = [](std::uint64_t v) { return header(v, false); };
+  const auto h64 = [](std::uint64_t v) { return header(v, true); };
+  const std::vector<Case> cases{
+      {h32(1) + h32(72) + h32(0) + h32(z.size()) + z, false, true, ""},
+      {h64(72) + points, true, false, ""},
+      {h32(1) + h32(0xFFFFFFF0) + h32(0xFFFFFFF0) + h32(z.size()) + z, false, true,
+       "block 0 announces 4294967280 bytes, more than its " + zsize + " compressed bytes can inflate to"},
+      {h64(1) + h64(72) + h64(std::uint64_t{1} << 40) + h64(z.size()) + z, true, true,
+       "block 0 announces 1099511627776 bytes, more than its " + zsize + " compressed bytes can inflate to"},
+      {h64(2) + h64(72) + h64(0) + h64(z.size()) + h64(z.size()) + z + z, true, true,
+       "header announces 144 bytes, expected at most 72"},
+      {h64(std::uint64_t{1} << 62) + points, true, false, "header announces 4611686018427387904 bytes, expected at most 72"},
+      {h32(0xFFFFFFFF) + points, false, false, "header announces 4294967295 bytes, expected at most 72"},
+  };
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_vtu_header_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / "t.vtu";
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (const Mode mode : {Mode::Inline, Mode::AppendedRaw, Mode::AppendedBase64}) {
+      SCOPED_TRACE("case " + std::to_string(i) + ", mode " + std::to_string(static_cast<int>(mode)));
+      const Case& c = cases[i];
+      std::ofstream(p, std::ios::binary | std::ios::trunc) << triangle_vtu(c.stored, mode, c.header64, c.compressed);
+      if (c.error.empty()) {
+        EXPECT_EQ(read_vtu(p).n_nodes(), 3u);
+        continue;
+      }
+      try {
+        read_vtu(p);
+        ADD_FAILURE() << "no exception";
+      } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), p.string() + ": line 6: DataArray 'Points' " + c.error);
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "not an InputError: " << e.what();
+      }
+    }
   fs::remove_all(dir);
 }
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <cstddef>
 #include <filesystem>
-#include <optional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,12 +30,20 @@ struct VtuFile {
   }
 };
 
+/// How many values a DataArray must hold: exactly `n`, or at most `n` (by default, any number).
+struct ValueCount {
+  std::size_t n = std::numeric_limits<std::size_t>::max();
+  bool exact = false;
+};
+inline ValueCount exactly(std::size_t n) { return {n, true}; }
+inline ValueCount at_most(std::size_t n) { return {n, false}; }
+
 /// The values of a DataArray (ascii, base64 binary or appended; zlib or not) converted to T
-/// (double or std::int64_t); exactly `expected` values when given. Undecodable data, and
-/// non-finite floats unless `allow_nonfinite` (field values), are an InputError at the
-/// array's line.
+/// (double or std::int64_t), as many as `count` allows. Undecodable data, a header that
+/// announces more bytes than `count` allows or than its zlib blocks can inflate to (checked
+/// before anything is allocated), and non-finite floats unless `allow_nonfinite` (field
+/// values), are an InputError at the array's line.
 template <class T>
-std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, std::optional<std::size_t> expected,
-                          bool allow_nonfinite = false);
+std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, ValueCount count, bool allow_nonfinite = false);
 
 }  // namespace meshmorph::detail
