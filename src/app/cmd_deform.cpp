@@ -90,9 +90,8 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   const CaseFile c = read_case_file(a.case_file);
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
-  DeformOptions options = read_options(c, threads);
+  const DeformOptions options = read_options(c, threads);
   if (c.order && *c.order > input.order()) input = elevate_order(input, *c.order);
-  options.threads = use_method_threads(threads, static_cast<std::size_t>(input.dim) * input.n_nodes());
   const std::size_t input_inverted = count_invalid_cells(input);
   if (input_inverted > 0)
     throw InputError(a.case_file + ": " + std::to_string(input_inverted) + " cells of the input mesh are inverted; "

@@ -128,7 +128,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   const CaseFile c = read_case_file(a.case_file);
   Mesh mesh = read_mesh(c.mesh);
   check_case_against_mesh(c, mesh);
-  FitSettings settings = read_options(c, threads);
+  const FitSettings settings = read_options(c, threads);
   if ((settings.fit.metric == "mu2" && mesh.dim != 2) || (settings.fit.metric == "mu303" && mesh.dim != 3))
     throw InputError(a.case_file + ": options.metric: " + settings.fit.metric + " is a " +
                      (mesh.dim == 2 ? "3D" : "2D") + " metric (mu2 in 2D, mu303 in 3D)");
@@ -187,7 +187,6 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
     }
   }
   if (c.order && *c.order > mesh.order()) mesh = elevate_order(mesh, *c.order);
-  settings.fit.threads = use_method_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
   const Topology topology = build_topology(mesh);
   // "level_set": "discrete": the nodal interpolant on the mesh as it is now.
   const auto compile = [&](const LevelSetFunction& exact) {

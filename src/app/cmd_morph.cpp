@@ -78,9 +78,8 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   const CaseFile c = read_case_file(a.case_file);
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
-  RunSettings settings = read_options(c, threads);
+  const RunSettings settings = read_options(c, threads);
   if (c.order && *c.order > input.order()) input = elevate_order(input, *c.order);
-  settings.morph.threads = settings.baseline.threads = use_method_threads(threads, static_cast<std::size_t>(input.dim) * input.n_nodes());
   if (const std::size_t bad = count_invalid_cells(input); bad > 0)
     throw InputError(c.mesh.string() + ": " + std::to_string(bad) +
                      " inverted elements: morph needs a valid input mesh (untangle recovers one)");

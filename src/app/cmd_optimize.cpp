@@ -8,6 +8,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <omp.h>
 #include <Eigen/Eigenvalues>
 
 #include "app/detail/method_output.h"
@@ -187,9 +188,10 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   } else {
     mesh = read_mesh(a.input);
   }
-  // Every element loop of the run (untangling, quality, validity) on the threads chosen for
-  // this size: one for small meshes.
-  threads = use_method_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
+  // Every element loop of the run (untangling, quality, validity) on the threads optimize
+  // picks for this size: one for small meshes.
+  threads = optimize_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
+  if (threads > 0) omp_set_num_threads(threads);
   const OptimizeSettings settings = read_settings(c ? c->options : nlohmann::json::object(), a.input, a, threads);
   const OptimizeOptions& options = settings.options;
   const int d = mesh.dim;

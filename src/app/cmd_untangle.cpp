@@ -76,7 +76,6 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   std::optional<UntangleReference> reference;
   UntangleOptions options = read_options(c ? c->options : nlohmann::json::object(), a.input, threads, reference);
   if (c && c->order && *c->order > input.order()) input = elevate_order(input, *c->order);
-  options.threads = use_method_threads(threads, static_cast<std::size_t>(input.dim) * input.n_nodes());
   const std::size_t input_inverted = count_invalid_cells(input);
   if (reference == UntangleReference::Input && input_inverted > 0)
     throw InputError(a.input + ": options.reference: \"input\" needs a valid input mesh, and " +

@@ -10,7 +10,6 @@
 #include "meshmorph/app/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/log.h"
-#include "meshmorph/methods/threads.h"
 
 namespace meshmorph {
 
@@ -19,7 +18,7 @@ void add_common_options(CLI::App& app, CommonOptions& options) {
   app.fallthrough();
   app.set_version_flag("--version", std::string("meshmorph ") + meshmorph_version());
   app.add_option("--threads", options.threads,
-                 "Number of threads (default: methods on one thread below 30 000 unknowns, else all cores)")
+                 "Number of threads (default: all cores; optimize: one below 30 000 unknowns)")
       ->check(CLI::Range(1, 1024))  // libgomp fails to start 32 768 threads, and crashed at 65 536
       ->type_name("N");
   auto* quiet = app.add_flag("-q,--quiet", options.quiet, "Print errors only");
@@ -46,12 +45,6 @@ void apply_common_options(const CommonOptions& options) {
         std::fprintf(stderr, "%s%.*s\n", prefix, static_cast<int>(message.size()), message.data());
       },
       max_level);
-}
-
-int use_method_threads(int threads, std::size_t n_dofs) {
-  threads = default_threads(threads, n_dofs);
-  if (threads > 0) omp_set_num_threads(threads);
-  return threads;
 }
 
 }  // namespace meshmorph

@@ -6,7 +6,6 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/log.h"
-#include "meshmorph/methods/threads.h"
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/fit_problem.h"
 #include "methods/detail/format.h"
@@ -46,7 +45,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   fo.det_floor = options.det_floor;
   const std::size_t n_free =
       fixed.size() - static_cast<std::size_t>(std::count_if(fixed.begin(), fixed.end(), [](std::uint8_t f) { return f != 0; }));
-  fo.threads = default_threads(options.threads, n_free);
+  fo.threads = optimize_threads(options.threads, n_free);
   OptimizeSolver kind = options.solver;
   if (kind == OptimizeSolver::Auto) kind = d == 3 ? OptimizeSolver::MatrixFree : OptimizeSolver::Cholesky;
   const std::vector<FitTerm> no_terms;
@@ -120,6 +119,8 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
 }
 
 }  // namespace
+
+int optimize_threads(int threads, std::size_t n_dofs) { return threads > 0 ? threads : n_dofs < 30000 ? 1 : 0; }
 
 OptimizeResult optimize_mesh(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& fixed,
                              const std::vector<FitTerm>& slides, const OptimizeOptions& options, Eigen::MatrixXd& x) {

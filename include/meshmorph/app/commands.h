@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <cstddef>
 #include <functional>
 #include <ostream>
 
@@ -30,10 +29,6 @@ void add_common_options(CLI::App& app, CommonOptions& options);
 /// Installs the stderr log sink ("meshmorph: ..."), silent with --quiet, detailed with
 /// --verbose, and sets the OpenMP thread count.
 void apply_common_options(const CommonOptions& options);
-/// The threads of a method's run on `n_dofs` unknowns when --threads asked for `threads` (0:
-/// not given): default_threads(), made the OpenMP default for every loop of the run. Returns
-/// them (0: all cores).
-int use_method_threads(int threads, std::size_t n_dofs);
 
 /// `meshmorph quality MESH [--json FILE] [-o OUT.vtu]`; sets `run` when chosen.
 void add_quality_command(CLI::App& app, Command& run);

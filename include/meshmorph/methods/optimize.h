@@ -47,8 +47,14 @@ struct OptimizeOptions {
   /// barrier of μ keeps elements from collapsing; a floor would stall meshes that must thin one)
   double det_floor = 0.0;
   OptimizeSolver solver = OptimizeSolver::Auto;
-  int threads = 0;  ///< OpenMP threads; 0 = default_threads(0, DOFs)
+  int threads = 0;  ///< OpenMP threads; 0 = optimize_threads(0, DOFs)
 };
+
+/// The OpenMP threads for a problem of `n_dofs` unknowns when `threads` are asked for: those,
+/// or for 0, one thread below 30 000 DOFs (where the barriers of the coloured element loops
+/// cost more than a second thread saves, many times more on a loaded machine) and the OpenMP
+/// default above.
+int optimize_threads(int threads, std::size_t n_dofs);
 
 /// One Newton step of the report's history.
 struct OptimizeIteration {
