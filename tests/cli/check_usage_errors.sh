@@ -26,6 +26,7 @@ convert $mesh $work/out/a.vtu --msh22|--msh22 needs a .msh output file
 convert $mesh $work/out/a.mesh --binary|--binary is not available
 convert $mesh $work/out/a.msh --order 5|--order: Value 5 not in range
 convert $quads $work/out/a.msh --order 4|--order 4 is above the highest for quadrilateral cells (3)
+convert $mesh $work/out/a.mesh --order 2|out/a.mesh: Medit .mesh holds linear cells only
 convert $work/none.msh $work/out/a.msh|none.msh
 quality|MESH is required
 quality $mesh -o $work/out/q.msh|expected a .vtu file
