@@ -30,8 +30,8 @@ constexpr int kExitBadInput = 2;
 //   here: OPENBLAS_CORETYPE names the family the CPU supports.
 // - libgomp's threads spin at a barrier until the slowest arrives. Where another job shares
 //   the cores, the one they wait for is often paused, and their spinning keeps it so: with
-//   one other busy process on 2 cores a 2-thread morph took 8 times longer than on one thread
-//   (bench/README.md, "Threads on a shared machine"). OMP_WAIT_POLICY=passive makes them
+//   one other busy process on 2 cores a 2-thread morph took 3 times longer than on one thread,
+//   8 times under heavier load (bench/README.md, "Threads on a shared machine"). OMP_WAIT_POLICY=passive makes them
 //   sleep; unless the user chose a policy or a spin count.
 void set_runtime_environment(char** argv) {
   if (std::getenv("MESHMORPH_ENVIRONMENT_SET") != nullptr) return;
