@@ -12,10 +12,6 @@
 namespace meshmorph {
 namespace {
 
-// The unit square of 4 × 4 quadrilaterals; its sides are the line groups left, right,
-// bottom and top (structured_mesh).
-Mesh square_with_sides() { return structured_mesh(ElementType::Quadrilateral, 1, 4); }
-
 std::int32_t node_at(const Mesh& m, double x, double y) {
   for (std::size_t i = 0; i < m.n_nodes(); ++i)
     if ((m.x.col(static_cast<Eigen::Index>(i)) - Eigen::Vector2d(x, y)).norm() < 1e-12) return static_cast<std::int32_t>(i);
@@ -31,7 +27,7 @@ BoundaryCondition entry(const std::string& group, Motion motion) {
 }
 
 TEST(BoundaryMotion, SharedNodesKeepEveryPlaneTheyAreOn) {
-  const Mesh m = square_with_sides();
+  const Mesh m = structured_mesh(ElementType::Quadrilateral, 1, 4);  // sides: groups left, right, bottom, top
   const Topology topo = build_topology(m);
   CaseFile c;
   c.file = "case.json";
@@ -58,7 +54,7 @@ TEST(BoundaryMotion, SharedNodesKeepEveryPlaneTheyAreOn) {
 }
 
 TEST(BoundaryMotion, TwoSlideGroupsOnOnePlaneShareItsNodes) {
-  Mesh m = square_with_sides();
+  Mesh m = structured_mesh(ElementType::Quadrilateral, 1, 4);
   m.groups.push_back({1, m.find_group("bottom")->tag, "floor"});  // the bottom again, by another name
   const Topology topo = build_topology(m);
   CaseFile c;

@@ -44,12 +44,15 @@ make_case unreachable '[{"group": "inner", "project": {"expr": "x^2 + y^2 + 1"}}
 expect unreachable 2 "cannot reach"
 # One row, for a node of the inner circle (physical group 2): the other nodes of the group have none.
 "$mm" --quiet convert "$mesh" "$work/annulus22.msh" --msh22 || fail "convert to MSH 2.2"
-inner_node=$(awk '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == 2 {print $6; exit}' "$work/annulus22.msh")
+first_node() {  # first_node TAG: the first node of a line element of physical group TAG
+  awk -v tag="$1" '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == tag {print $6; exit}' "$work/annulus22.msh"
+}
+inner_node=$(first_node 2)
 printf 'node,dx,dy\n%s,0.1,0\n' "$inner_node" > "$work/short.csv"
 make_case missing_row "[{\"group\": \"inner\", \"displace\": {\"file\": \"short.csv\"}}]"
 expect missing_row 2 "has no row for node"
 # A row for a node of the fixed outer circle: an error, not a motion of a fixed node.
-outer_node=$(awk '/^\$Elements/ {on=1; next} on && $2 == 1 && $4 == 1 {print $6; exit}' "$work/annulus22.msh")
+outer_node=$(first_node 1)
 printf 'node,dx,dy\n%s,0.1,0\n' "$outer_node" > "$work/other_group.csv"
 make_case other_group "[{\"group\": \"inner\", \"displace\": {\"file\": \"other_group.csv\"}}]"
 expect other_group 2 "node $outer_node is not in group \"inner\""
