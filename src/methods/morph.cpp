@@ -46,26 +46,37 @@ class MorphImpl final : public Morpher::Impl {
       result.message = "no node has a prescribed motion";
       return result;
     }
+    if (const std::size_t stuck = P.stuck_inverted(target); stuck > 0) {
+      result.message = std::to_string(stuck) +
+                       " cells have only fixed and prescribed nodes and the motion inverts them: no motion of the"
+                       " other nodes can make them valid";
+      return result;
+    }
     const double tol_max = options_.tolerance * P.length_scale();
-    const double delta_star = options_.gradient_tolerance * P.reference_energy();
+    // δ and μ are relative to the weights' scale (docs/morph.md): δ to the energy of the
+    // identity map with the current weights, μ to the mean weight beside the constrained
+    // nodes. Scaling every ω by s then leaves the iterates unchanged, and the weights' growth
+    // (Algorithm 2: ×β per update, e^27 for a cell of quality 0.1) neither pushes the boundary
+    // back nor tightens δ.
+    const double delta_star = options_.gradient_tolerance;
     if (!started_) {
       mu0_ = options_.penalty0 * P.distortion_stiffness() / penalty.mean_diagonal();
       m_ = options_.m0;
-      penalty.mu = mu0_;
       started_ = true;
     }
+    const auto set_mu = [&] { penalty.mu = mu0_ * m_ / options_.m0 * P.boundary_weight(); };
+    set_mu();
     // ε₀, δ₀ restart with each step (relative to how far this step has to go); μ, m, λ and
     // the weights carry over (paper 000 §5.5).
     const double c_start = penalty.constraint_norm(P.state());
     double eps = options_.eps0 * c_start;
-    double delta = std::max(options_.delta0 * P.reference_energy(), delta_star);
+    double delta = std::max(options_.delta0, delta_star);
 
     bool stalled = false;
     NewtonOptions no;
     no.max_iterations = options_.max_newton;
     no.exact_first = options_.exact_first;
     for (int outer = 1; outer <= options_.max_outer; ++outer) {
-      no.decrement_tolerance = delta;
       // Inexact Newton on the intermediate subproblems: two digits per Krylov solve cost a
       // quarter of the iterations of eight and (measured on the §5.2 shells) neither more
       // Newton steps nor another AL iteration; a premature decrement test only leaves the
@@ -75,6 +86,7 @@ class MorphImpl final : public Morpher::Impl {
       bool newton_ok = true;
       std::string newton_message;
       for (int update = 0; update <= options_.max_weight_updates; ++update) {
+        no.decrement_tolerance = delta * P.reference_energy();
         const NewtonStats s = newton(P, *solver_, no, &newton_memory_);
         result.linear += s.linear_solves;
         result.krylov += s.krylov_iterations;
@@ -85,8 +97,9 @@ class MorphImpl final : public Morpher::Impl {
         // Algorithm 2: stop once the gradient is below δ with the weights just updated, i.e.
         // when Newton has nothing to do after an update.
         if (!s.converged || (update > 0 && s.iterations == 0) || !options_.adaptive_weights ||
-            !P.update_weights(options_.alpha, options_.beta))
+            !P.update_weights(options_.alpha, options_.beta, options_.max_weight))
           break;
+        set_mu();
       }
       ++result.outer;
       const double c = penalty.constraint_norm(P.state());
@@ -110,7 +123,7 @@ class MorphImpl final : public Morpher::Impl {
       }
       // Stalled: twelve orders of penalty (six failed iterations) and the constraint no longer
       // halves; past this the Newton systems lose their digits to the penalty's condition.
-      if (outer > 1 && c > 0.5 * result.history[result.history.size() - 2].constraint_norm && penalty.mu > 1e12 * mu0_) {
+      if (outer > 1 && c > 0.5 * result.history[result.history.size() - 2].constraint_norm && m_ > 1e12 * options_.m0) {
         result.message = newton_ok ? format("the augmented Lagrangian stalled (boundary error %.3g, mu %.3g)", c, penalty.mu)
                                    : "the nonlinear solver stalled (" + newton_message + ")";
         stalled = true;
@@ -124,9 +137,9 @@ class MorphImpl final : public Morpher::Impl {
         delta = emax <= tol_max ? delta_star : std::max(delta / m_, delta_star);
       } else {  // lines 16–21
         m_ *= options_.m_factor;
-        penalty.mu = mu0_ * m_ / options_.m0;
+        set_mu();
         eps = options_.eps0 * c_start * std::pow(options_.m0 / m_, 0.1);
-        delta = std::max(options_.delta0 * P.reference_energy() * (options_.m0 / m_), delta_star);
+        delta = std::max(options_.delta0 * (options_.m0 / m_), delta_star);
       }
     }
     if (!result.converged && result.message.empty())

@@ -44,8 +44,16 @@ MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const
       double v = 0.0;
       for (int q = 0; q < block.n_points(); ++q) v += block.cell(c)[q].weight;
       volumes_.push_back(v);
-      reference_energy_ += v;
     }
+  {
+    std::vector<std::uint8_t> near(input.n_cells(), 0);
+    for (std::int32_t node : penalty_->nodes())
+      for (std::int64_t k = topology.node_cell_offset[node]; k < topology.node_cell_offset[node + 1]; ++k)
+        near[static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(k)])] = 1;
+    for (std::size_t e = 0; e < near.size(); ++e)
+      if (near[e]) boundary_cells_.push_back(static_cast<std::uint32_t>(e));
+  }
+  weights_changed();
   for (const CellBlock& block : input.cells)
     if (block.order > 1 || !is_simplex(block.type)) dense_validity_ = true;
   length_scale_ = (input.x.rowwise().maxCoeff() - input.x.rowwise().minCoeff()).norm();
@@ -158,17 +166,47 @@ const std::vector<double>& MorphProblem<d>::distortions() {
 }
 
 template <int d>
-bool MorphProblem<d>::update_weights(double alpha, double beta) {
+bool MorphProblem<d>::update_weights(double alpha, double beta, double max_weight) {
   const std::vector<double>& eta = distortions();
   bool changed = false;
   for (std::size_t e = 0; e < eta.size(); ++e) {
     const double w = weights_[e];
     const double w_hat = std::max(w, std::exp(std::min(alpha * (eta[e] - 1.0), 700.0)));
-    const double w_new = std::min(beta * w, w_hat);
+    const double w_new = std::max(w, std::min({beta * w, w_hat, max_weight}));
     if (w_new > w * (1.0 + 1e-12)) changed = true;
     weights_[e] = w_new;
   }
+  if (changed) weights_changed();
   return changed;
+}
+
+template <int d>
+void MorphProblem<d>::weights_changed() {
+  reference_energy_ = 0.0;
+  for (std::size_t e = 0; e < volumes_.size(); ++e) reference_energy_ += weights_[e] * volumes_[e];
+  double wv = 0.0, v = 0.0;
+  for (std::uint32_t e : boundary_cells_) wv += weights_[e] * volumes_[e], v += volumes_[e];
+  boundary_weight_ = v > 0.0 ? wv / v : 1.0;
+}
+
+template <int d>
+std::size_t MorphProblem<d>::stuck_inverted(const Eigen::MatrixXd& target) const {
+  std::size_t count = 0;
+  for (const CellBlock& block : mesh_->cells) {
+    const int n = block.n_nodes_per_cell();
+    Eigen::MatrixXd X(d, n);
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      bool stuck = true;
+      for (int a = 0; a < n && stuck; ++a) {
+        const std::int32_t node = block.cell(c)[a];
+        const NodeRole role = bc_->role[node];
+        stuck = role == NodeRole::Fixed || role == NodeRole::Prescribed;
+        X.col(a) = role == NodeRole::Prescribed ? target.col(node) : x_.col(node);
+      }
+      if (stuck && !(min_jacobian_det(block.type, block.order, X) > 0.0)) ++count;
+    }
+  }
+  return count;
 }
 
 template <int d>

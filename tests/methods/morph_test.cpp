@@ -211,13 +211,40 @@ TEST(Morph, GuardedCellsLetAP2MeshFollowALargeTranslation) {
 // The distortion's barrier holds the thinnest cells against the penalty and the augmented
 // Lagrangian stalls short of the boundary (DESIGN §6); the untangle pass from there places
 // the boundary, untangles the cells that this inverts and ends valid with the boundary exact.
+// Squeezes to 1% of the height, uniform and as a wedge (the left side at 1%, the right side
+// kept): the optimum puts every cell at the squeeze's own aspect, q = 2f and about f. The
+// weights grow ×β per update up to their bound and μ follows them; before it did, the
+// uniform squeeze stalled 0.06 from its target, and before the exact Hessian's shift could
+// fall below 1e-4 the wedge crawled at full steps to Newton's iteration limit.
+TEST(Morph, ReachesSqueezesToOnePercentWithTheBestQualityTheyAllow) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 10);
+  const Topology topo = build_topology(mesh);
+  for (const bool wedge : {false, true}) {
+    Eigen::MatrixXd squeezed = mesh.x;
+    const Eigen::ArrayXd factor = wedge ? (0.01 + 0.99 * mesh.x.row(0).array()).eval() : Eigen::ArrayXd::Constant(mesh.x.cols(), 0.01);
+    squeezed.row(1) = (mesh.x.row(1).array() * factor.transpose()).matrix();
+    const BoundaryTargets bc = all_boundary(mesh, topo, squeezed);
+    MorphOptions o;
+    o.finish_by_untangle = false;
+    Eigen::MatrixXd x = mesh.x;
+    const MorphResult r = Morpher(mesh, topo, bc, o).solve(bc.target, x);
+    ASSERT_TRUE(r.converged) << (wedge ? "wedge: " : "uniform: ") << r.message;
+    EXPECT_LE(r.history.back().boundary_error_max, 1e-9 * std::sqrt(2.0));
+    EXPECT_GT(min_quality(mesh, x), wedge ? 0.0099 : 0.0199) << (wedge ? "wedge" : "uniform");
+  }
+}
+
 TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
   const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 10);
   const Topology topo = build_topology(mesh);
   Eigen::MatrixXd squeezed = mesh.x;
   squeezed.row(1) *= 0.01;
   const BoundaryTargets bc = all_boundary(mesh, topo, squeezed);
+  // The augmented Lagrangian reaches this squeeze by itself (Morph.ReachesSqueezes...); a
+  // penalty that starts 1e16 times too soft makes it stall: six penalty rises later it is
+  // still a quarter of the height away.
   MorphOptions o;
+  o.penalty0 = 1e-16;
   o.finish_by_untangle = false;
   Eigen::MatrixXd stalled = mesh.x;
   const MorphResult alone = Morpher(mesh, topo, bc, o).solve(bc.target, stalled);
@@ -226,7 +253,8 @@ TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
   EXPECT_FALSE(alone.finish.has_value());
 
   Eigen::MatrixXd x = mesh.x;
-  const MorphResult r = Morpher(mesh, topo, bc, MorphOptions{}).solve(bc.target, x);
+  o.finish_by_untangle = true;
+  const MorphResult r = Morpher(mesh, topo, bc, o).solve(bc.target, x);
   ASSERT_TRUE(r.converged) << r.message;
   ASSERT_TRUE(r.finish.has_value());
   EXPECT_TRUE(r.finish->valid);
@@ -249,7 +277,7 @@ TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
   // other pass.
   Eigen::MatrixXd half = mesh.x;
   half.row(1) *= 0.5;
-  Morpher series(mesh, topo, bc, MorphOptions{});
+  Morpher series(mesh, topo, bc, o);
   Eigen::MatrixXd y = mesh.x;
   const MorphResult r1 = series.solve(bc.target, y, 1);
   ASSERT_TRUE(r1.finish.has_value());
@@ -258,6 +286,22 @@ TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
   EXPECT_TRUE(r2.converged) << r2.message;
   EXPECT_FALSE(r2.finish.has_value());
   EXPECT_LT(r2.history.front().mu, 1e-6 * r1.history.back().mu);
+}
+
+// Cells with no free node are what the motion makes them: one it inverts stops the run
+// before any iteration, naming the cause (it used to stall after six penalty rises).
+TEST(Morph, StopsAtOnceWhenTheMotionInvertsACellWithNoFreeNode) {
+  const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 3);
+  const Topology topo = build_topology(mesh);
+  Eigen::MatrixXd mirrored = mesh.x;
+  mirrored.row(0) = (1.0 - mesh.x.row(0).array()).matrix();  // x ↦ 1 − x turns every cell over
+  const BoundaryTargets bc = all_boundary(mesh, topo, mirrored);
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = Morpher(mesh, topo, bc, MorphOptions{}).solve(bc.target, x);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(r.history.empty());
+  EXPECT_NE(r.message.find(" cells have only fixed and prescribed nodes and the motion inverts them"), std::string::npos) << r.message;
+  EXPECT_EQ(x, mesh.x);
 }
 
 TEST(Morph, RejectsAnInvertedInputMesh) {

@@ -20,20 +20,22 @@ struct MorphOptions {
   /// ε*: the run has converged when every prescribed node is within tolerance·L of its target
   /// (L = diagonal of the input mesh's bounding box) ...
   double tolerance = 1e-9;
-  /// ... and the last Newton solve met δ* (½gᵀH⁻¹g ≤ δ*·E_ref, E_ref = Σ_e |e|: the energy of
-  /// the identity map).
+  /// ... and the last Newton solve met δ* (½gᵀH⁻¹g ≤ δ*·E_ref, E_ref = Σ_e ω_e |e|: the
+  /// energy of the identity map with the current weights).
   double gradient_tolerance = 1e-12;
   double eps0 = 0.1;       ///< ε₀ relative to the constraint norm at the start of a step
   double delta0 = 1e-3;    ///< δ₀, relative to E_ref like δ*
   /// μ₀ = penalty0 · (mean diagonal of the distortion Hessian at the constrained DOFs) /
   /// (mean diagonal of the boundary mass): the penalty starts `penalty0` times stiffer than
-  /// the mesh next to it, whatever the units and the grading.
+  /// the mesh next to it, whatever the units and the grading; μ = μ₀·(m/m₀)·(mean weight of
+  /// the cells beside the constrained nodes).
   double penalty0 = 10.0;
   double m0 = 10.0;        ///< m₀ of Algorithm 1
   double m_factor = 100.0; ///< m ← m_factor·m when the constraint did not decrease enough
   bool adaptive_weights = true;  ///< Algorithm 2; false keeps ω = 1 (paper §4.2 comparison)
   double alpha = 3.0;      ///< eq. 10
   double beta = 1.25;      ///< eq. 11
+  double max_weight = 1e12;  ///< upper bound on ω_e (docs/morph.md)
   int max_outer = 40;      ///< augmented-Lagrangian iterations per step
   int max_weight_updates = 30;  ///< nonlinear solves per augmented-Lagrangian iteration
   int max_newton = 200;    ///< Newton steps per nonlinear solve

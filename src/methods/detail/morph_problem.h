@@ -32,16 +32,22 @@ class MorphProblem final : public NewtonProblem {
   /// The penalty's targets from a full d × n target (Prescribed) and bc.target (Slide).
   Eigen::MatrixXd gather_targets(const Eigen::MatrixXd& target) const;
 
-  /// Σ_e |e| over the input cells: the energy of the identity map with ω = 1.
+  /// Σ_e ω_e |e| over the input cells: the energy of the identity map with the current weights.
   double reference_energy() const { return reference_energy_; }
+  /// Volume-weighted mean of ω_e over the cells that hold a constrained node: how much the
+  /// weights have stiffened the mesh beside the boundary (1 with ω = 1).
+  double boundary_weight() const { return boundary_weight_; }
   /// Diagonal of the input mesh's bounding box.
   double length_scale() const { return length_scale_; }
   /// Mean diagonal of the projected distortion Hessian at the free DOFs of the constrained
   /// nodes, at the current state (for μ₀).
   double distortion_stiffness();
-  /// Algorithm 2, lines 4–8: ω_e ← min(β ω_e, max(ω_e, e^{α(η_e − 1)})). Returns whether any
-  /// weight changed.
-  bool update_weights(double alpha, double beta);
+  /// Algorithm 2, lines 4–8: ω_e ← min(β ω_e, max(ω_e, e^{α(η_e − 1)}), max_weight), never
+  /// below ω_e. Returns whether any weight changed.
+  bool update_weights(double alpha, double beta, double max_weight);
+  /// Cells whose nodes are all Fixed or Prescribed and that are not valid with the prescribed
+  /// nodes at `target` (d × n): no motion of the free nodes can repair them.
+  std::size_t stuck_inverted(const Eigen::MatrixXd& target) const;
   /// min_e 1/η_e at the current state (eq. 9 on the quadrature points of each cell).
   double min_quality();
 
@@ -57,6 +63,7 @@ class MorphProblem final : public NewtonProblem {
 
  private:
   const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
+  void weights_changed();  // recomputes reference_energy_ and boundary_weight_
   const Mesh* mesh_;
   const BoundaryTargets* bc_;
   int threads_;
@@ -70,7 +77,8 @@ class MorphProblem final : public NewtonProblem {
   std::vector<std::size_t> blocking_;  // cells (global) that failed admissible() since the last refine()
   std::vector<std::int32_t> penalty_slot_;  // node → index in the penalty, -1
   std::vector<double> weights_, volumes_;
-  double reference_energy_ = 0.0, length_scale_ = 1.0;
+  std::vector<std::uint32_t> boundary_cells_;  // cells with a constrained node
+  double reference_energy_ = 0.0, boundary_weight_ = 1.0, length_scale_ = 1.0;
   bool dense_validity_ = false;  // curved or tensor cells: check validity beyond the quadrature points
   Eigen::MatrixXd x_, trial_;
   std::vector<double> eta_;     // distortions() of the state with version eta_version_
