@@ -76,6 +76,10 @@ class MorphImpl final : public Morpher::Impl {
     NewtonOptions no;
     no.max_iterations = options_.max_newton;
     no.exact_first = options_.exact_first;
+    // Shifts of 1e-4 |diag H| dwarf the soft modes beside cells weighted 1e12 or squeezed to
+    // 1%: full steps crawled there (docs/morph.md). fit's P3 meshes took up to 1.7× the
+    // Newton steps with this floor, so only morph lowers it.
+    no.min_shift = 1e-10;
     for (int outer = 1; outer <= options_.max_outer; ++outer) {
       // Inexact Newton on the intermediate subproblems: two digits per Krylov solve cost a
       // quarter of the iterations of eight and (measured on the §5.2 shells) neither more

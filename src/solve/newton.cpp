@@ -87,7 +87,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     const long long krylov_before = stats.krylov_iterations;
     if (exact && !reused) {
       tau = newton_direction(solver, a.hessian, a.gradient, tau_next, options.max_shift, 5, rtol, p, stats);
-      tau_next = tau > 1e-10 ? tau / 4.0 : 0.0;
+      tau_next = tau > options.min_shift ? tau / 4.0 : 0.0;
       if (tau < 0.0) {
         // Far from a minimiser: projected steps until one is taken in full.
         log_detail("newton: the exact Hessian is far from positive definite; projected steps");

@@ -77,6 +77,10 @@ struct NewtonOptions {
   /// the two steps after it too; always that step when false.
   bool exact_first = true;
   double max_shift = 1.0;
+  /// The next step starts from a quarter of the last τ that worked while that is above
+  /// min_shift, else from 0 (and from there 1e-4 if H is indefinite). morph lowers it: its
+  /// weighted, penalised Hessians may need 1e-8, and full steps at 1e-4 crawled.
+  double min_shift = 1e-4;
   /// Relative residual of Krylov solves (also of those with an earlier factorization).
   double linear_rtol = 1e-8;
   /// Inexact Newton where > linear_rtol: Krylov solves stop at this relative residual (the
