@@ -20,7 +20,8 @@ double real(MshState& s, const char* what) {
   const std::size_t at = s.cur.pos();
   return finite_or_fail(s.cur, s.cur.raw<double>(what), at, what);
 }
-std::size_t here(MshState& s) { return s.binary ? s.cur.pos() : s.cur.token_start(); }
+// Where the field just read starts (its first byte in binary content).
+std::size_t here(MshState& s) { return s.cur.token_start(); }
 
 void begin_binary(MshState& s) {
   if (!s.binary) return;
@@ -95,9 +96,8 @@ void read_msh41_nodes(MshState& s) {
     if (seen > n_nodes) c.fail_at(here(s), "node blocks hold more nodes than the " + std::to_string(n_nodes) + " announced");
     block_tags.resize(n);
     for (auto& t : block_tags) {
-      const std::size_t at = here(s);
       t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
-      if (t <= 0) c.fail_at(s.binary ? at : c.token_start(), "node tag must be positive");
+      if (t <= 0) c.fail_at(here(s), "node tag must be positive");
     }
     const int n_param = parametric ? dim : 0;
     for (std::uint64_t i = 0; i < n; ++i) {

@@ -46,6 +46,7 @@ const std::map<std::string, std::string>& expected_reasons() {
       {"msh40_header.msh", "line 2: MSH 4.0 is not supported"},
       {"msh41_bad_number.msh", "line 16: expected y coordinate (a number), got '0.5.3'"},
       {"msh41_binary_cut.msh", "byte offset"},
+      {"msh41_binary_element_type_1000.msh", "byte offset 10030: unsupported element type 1000"},
       {"msh41_binary_endianness.msh", "byte offset 20: binary MSH with a foreign byte order"},
       {"msh41_duplicate_node_tag.msh", "duplicate node tag 3"},
       {"msh41_elements_before_nodes.msh", "line 8: $Elements before $Nodes"},

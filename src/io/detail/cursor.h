@@ -113,6 +113,7 @@ class Cursor {
       fail("unexpected end of file in binary data, expected " + std::string(what));
     T v;
     std::memcpy(&v, text_.data() + pos_, sizeof(T));
+    token_start_ = pos_;  // messages about the value point at its first byte
     pos_ += sizeof(T);
     return v;
   }
