@@ -77,7 +77,7 @@ class MorphImpl final : public Morpher::Impl {
     no.max_iterations = options_.max_newton;
     no.exact_first = options_.exact_first;
     // Shifts of 1e-4 |diag H| dwarf the soft modes beside cells weighted 1e12 or squeezed to
-    // 1%: full steps crawled there (docs/morph.md). fit's P3 meshes took up to 1.7× the
+    // 1%: full steps crawled there (docs/morph.md). fit's P3 meshes took up to 2.8× the
     // Newton steps with this floor, so only morph lowers it.
     no.min_shift = 1e-10;
     for (int outer = 1; outer <= options_.max_outer; ++outer) {
