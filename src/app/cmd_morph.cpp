@@ -63,6 +63,9 @@ RunSettings read_options(const CaseFile& c, int threads) {
   r.read("max_weight_updates", m.max_weight_updates, 0, 10000);
   r.read("max_newton", m.max_newton, 1, 100000);
   r.read("exact_first", m.exact_first);
+  std::string guard = "auto";
+  r.read("guard", guard, {"auto", "cells", "ring"});
+  m.guard = guard == "ring" ? MorphOptions::Guard::Ring : guard == "cells" ? MorphOptions::Guard::Cells : MorphOptions::Guard::Auto;
   std::string finish = "untangle";
   r.read("finish", finish, {"untangle", "none"});
   m.finish_by_untangle = finish == "untangle";

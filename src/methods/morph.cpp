@@ -33,6 +33,8 @@ class MorphImpl final : public Morpher::Impl {
   MorphImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options)
       : options_(options), input_(&input), topology_(&topology), bc_(&bc), problem_(input, topology, bc, options.threads) {
     solver_ = detail::make_newton_solver<d>(options.solver, options.threads, input, problem_.dofs());
+    if (options.guard == MorphOptions::Guard::Ring || (options.guard == MorphOptions::Guard::Auto && d == 2))
+      problem_.widen_guard();
   }
 
   MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) override {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include <omp.h>
 
@@ -15,7 +16,7 @@ namespace meshmorph {
 
 template <int d>
 MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, int threads)
-    : mesh_(&input), bc_(&bc), threads_(threads), guard_(input, dofs_) {
+    : mesh_(&input), topology_(&topology), bc_(&bc), threads_(threads), guard_(input, dofs_) {
   targets_ = build_targets<d>(input, input.x, TargetKind::Input);
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0);
   std::vector<std::int32_t> constrained;
@@ -118,7 +119,21 @@ bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
 template <int d>
 bool MorphProblem<d>::refine() {
   if (blocking_.empty()) return false;
+  if (widen_guard_) {
+    std::vector<std::uint8_t> mark(mesh_->n_cells(), 0);
+    for (std::size_t c : blocking_) mark[c] = 1;
+    for (std::size_t c : blocking_) {
+      const auto [block, local] = topology_->locate(static_cast<std::int32_t>(c));
+      for (const std::int32_t node : std::span(mesh_->cells[block].cell(local), mesh_->cells[block].n_nodes_per_cell()))
+        for (std::int64_t k = topology_->node_cell_offset[node]; k < topology_->node_cell_offset[node + 1]; ++k)
+          mark[static_cast<std::size_t>(topology_->node_cells[static_cast<std::size_t>(k)])] = 1;
+    }
+    blocking_.clear();
+    for (std::size_t c = 0; c < mark.size(); ++c)
+      if (mark[c]) blocking_.push_back(c);
+  }
   std::sort(blocking_.begin(), blocking_.end());
+  blocking_.erase(std::unique(blocking_.begin(), blocking_.end()), blocking_.end());
   const bool added = guard_.add(blocking_) > 0;
   blocking_.clear();
   return added;

@@ -40,6 +40,11 @@ struct MorphOptions {
   int max_weight_updates = 30;  ///< nonlinear solves per augmented-Lagrangian iteration
   int max_newton = 200;    ///< Newton steps per nonlinear solve
   bool exact_first = true; ///< NewtonOptions::exact_first (DESIGN §6)
+  /// Curved and tensor cells that block a line search join the energy at their validity
+  /// samples; Ring guards every cell sharing a node with them too. Auto: Ring in 2D, Cells in
+  /// 3D (docs/morph.md: a tetrahedron's ring is 30–60 cells).
+  enum class Guard { Auto, Cells, Ring };
+  Guard guard = Guard::Auto;
   /// When the augmented Lagrangian stalls short of the boundary (μ ≥ 1e12 μ₀ and the
   /// constraint no longer halves), finish with paper 001's untangling and smoothing from the
   /// stalled iterate, the prescribed nodes on their targets (DESIGN §6, docs/morph.md).

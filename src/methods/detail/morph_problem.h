@@ -60,11 +60,14 @@ class MorphProblem final : public NewtonProblem {
   bool refine() override;
   /// Number of guarded cells.
   std::size_t guarded_cells() const { return guard_.size(); }
+  /// refine() also guards every cell that shares a node with a blocking one.
+  void widen_guard() { widen_guard_ = true; }
 
  private:
   const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
   void weights_changed();  // recomputes reference_energy_ and boundary_weight_
   const Mesh* mesh_;
+  const Topology* topology_;
   const BoundaryTargets* bc_;
   int threads_;
   TargetField<d> targets_;
@@ -75,6 +78,7 @@ class MorphProblem final : public NewtonProblem {
   std::unique_ptr<BoundaryPenalty<d>> penalty_;
   ValidityGuard<d> guard_;
   std::vector<std::size_t> blocking_;  // cells (global) that failed admissible() since the last refine()
+  bool widen_guard_ = false;
   std::vector<std::int32_t> penalty_slot_;  // node → index in the penalty, -1
   std::vector<double> weights_, volumes_;
   std::vector<std::uint32_t> boundary_cells_;  // cells with a constrained node
