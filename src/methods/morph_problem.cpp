@@ -120,8 +120,7 @@ template <int d>
 bool MorphProblem<d>::refine() {
   if (blocking_.empty()) return false;
   if (widen_guard_) {
-    std::vector<std::uint8_t> mark(mesh_->n_cells(), 0);
-    for (std::size_t c : blocking_) mark[c] = 1;
+    std::vector<std::uint8_t> mark(mesh_->n_cells(), 0);  // the cells of the blocking cells' nodes
     for (std::size_t c : blocking_) {
       const auto [block, local] = topology_->locate(static_cast<std::int32_t>(c));
       for (const std::int32_t node : std::span(mesh_->cells[block].cell(local), mesh_->cells[block].n_nodes_per_cell()))
