@@ -61,8 +61,8 @@ CellPatches patch_cells(const CellBlock& block, const Topology& topology, std::s
     const std::int32_t* nodes = block.cell(c);
     for (int a = 0; a < n; ++a) {
       const auto v = static_cast<std::size_t>(nodes[a]);
-      for (auto i = topology.node_cell_offset[v]; i < topology.node_cell_offset[v + 1]; ++i) {
-        const auto g = static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(i)]);
+      for (const std::int32_t cell : topology.cells_of(v)) {
+        const auto g = static_cast<std::size_t>(cell);
         if (g >= first_cell && g < first_cell + n_cells) f(g - first_cell);
       }
     }

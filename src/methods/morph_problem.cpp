@@ -49,8 +49,7 @@ MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const
   {
     std::vector<std::uint8_t> near(input.n_cells(), 0);
     for (std::int32_t node : penalty_->nodes())
-      for (std::int64_t k = topology.node_cell_offset[node]; k < topology.node_cell_offset[node + 1]; ++k)
-        near[static_cast<std::size_t>(topology.node_cells[static_cast<std::size_t>(k)])] = 1;
+      for (std::int32_t cell : topology.cells_of(static_cast<std::size_t>(node))) near[static_cast<std::size_t>(cell)] = 1;
     for (std::size_t e = 0; e < near.size(); ++e)
       if (near[e]) boundary_cells_.push_back(static_cast<std::uint32_t>(e));
   }
@@ -124,8 +123,7 @@ bool MorphProblem<d>::refine() {
     for (std::size_t c : blocking_) {
       const auto [block, local] = topology_->locate(static_cast<std::int32_t>(c));
       for (const std::int32_t node : std::span(mesh_->cells[block].cell(local), mesh_->cells[block].n_nodes_per_cell()))
-        for (std::int64_t k = topology_->node_cell_offset[node]; k < topology_->node_cell_offset[node + 1]; ++k)
-          mark[static_cast<std::size_t>(topology_->node_cells[static_cast<std::size_t>(k)])] = 1;
+        for (std::int32_t cell : topology_->cells_of(static_cast<std::size_t>(node))) mark[static_cast<std::size_t>(cell)] = 1;
     }
     blocking_.clear();
     for (std::size_t c = 0; c < mark.size(); ++c)

@@ -44,6 +44,10 @@ struct Topology {
 
   /// (block, cell within block) of a global cell index.
   std::pair<std::size_t, std::size_t> locate(std::int32_t cell) const;
+  /// The cells (global indices) that hold node i.
+  std::span<const std::int32_t> cells_of(std::size_t i) const {
+    return {node_cells.data() + node_cell_offset[i], node_cells.data() + node_cell_offset[i + 1]};
+  }
 };
 
 /// Builds the topology of the cells of `mesh`. Throws InputError if a facet is shared by
