@@ -61,6 +61,7 @@ RunSettings read_options(const CaseFile& c, int threads) {
   r.read("max_weight", m.max_weight, 1.0, 1e300);
   r.read("max_outer", m.max_outer, 1, 10000);
   r.read("max_weight_updates", m.max_weight_updates, 0, 10000);
+  r.read("weight_steps", m.weight_steps, 0, 10000);
   r.read("max_newton", m.max_newton, 1, 100000);
   r.read("exact_first", m.exact_first);
   std::string guard = "auto";

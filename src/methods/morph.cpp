@@ -91,8 +91,17 @@ class MorphImpl final : public Morpher::Impl {
       no.forcing = final_delta ? 0.0 : 1e-2;
       bool newton_ok = true;
       std::string newton_message;
-      for (int update = 0; update <= options_.max_weight_updates; ++update) {
+      // Algorithm 2 with inexact re-solves (docs/morph.md, "The weight loop"): the first solve
+      // of an AL iteration meets δ; after each weight update Newton takes at most
+      // `weight_steps` steps before the next one, and the loop ends with a solve that meets δ
+      // once the weights stop changing or after `max_weight_updates` updates.
+      bool settled = !options_.adaptive_weights;
+      for (int update = 0;; ++update) {
+        const bool last = settled || update >= options_.max_weight_updates;
         no.decrement_tolerance = delta * P.reference_energy();
+        no.on_step = nullptr;
+        if (!last && update > 0 && options_.weight_steps > 0)
+          no.on_step = [k = options_.weight_steps](int steps, double) { return steps < k; };
         const NewtonStats s = newton(P, *solver_, no, &newton_memory_);
         result.linear += s.linear_solves;
         result.krylov += s.krylov_iterations;
@@ -100,12 +109,15 @@ class MorphImpl final : public Morpher::Impl {
         if (s.iterations > 0) ++result.nonlinear;
         newton_ok = s.converged;
         newton_message = s.message;
-        // Algorithm 2: stop once the gradient is below δ with the weights just updated, i.e.
-        // when Newton has nothing to do after an update.
-        if (!s.converged || (update > 0 && s.iterations == 0) || !options_.adaptive_weights ||
-            !P.update_weights(options_.alpha, options_.beta, options_.max_weight))
+        // Algorithm 2's loop condition: the gradient is below δ with the weights just updated,
+        // i.e. Newton had nothing to do after an update.
+        if (last || !(s.converged || s.stopped) || (update > 0 && s.iterations == 0)) break;
+        if (P.update_weights(options_.alpha, options_.beta, options_.max_weight))
+          set_mu();
+        else if (s.converged)
           break;
-        set_mu();
+        else
+          settled = true;  // a cut-short solve: one more, to δ
       }
       ++result.outer;
       const double c = penalty.constraint_norm(P.state());

@@ -37,7 +37,12 @@ struct MorphOptions {
   double beta = 1.25;      ///< eq. 11
   double max_weight = 1e12;  ///< upper bound on ω_e (docs/morph.md)
   int max_outer = 40;      ///< augmented-Lagrangian iterations per step
-  int max_weight_updates = 30;  ///< nonlinear solves per augmented-Lagrangian iteration
+  /// Weight updates per augmented-Lagrangian iteration (Algorithm 2's loop) at most.
+  int max_weight_updates = 100;
+  /// Newton steps at most between two weight updates after the first solve of an AL
+  /// iteration (which meets δ, as does the last); 0: every solve meets δ, as in the paper
+  /// (docs/morph.md, "The weight loop").
+  int weight_steps = 4;
   int max_newton = 200;    ///< Newton steps per nonlinear solve
   bool exact_first = true; ///< NewtonOptions::exact_first (DESIGN §6)
   /// Curved and tensor cells that block a line search join the energy at their validity
