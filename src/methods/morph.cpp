@@ -91,6 +91,7 @@ class MorphImpl final : public Morpher::Impl {
       no.forcing = final_delta ? 0.0 : 1e-2;
       bool newton_ok = true;
       std::string newton_message;
+      const long long newton_before = result.newton;
       // Algorithm 2 with inexact re-solves (docs/morph.md, "The weight loop"): the first solve
       // of an AL iteration meets δ; after each weight update Newton takes at most
       // `weight_steps` steps before the next one, and the loop ends with a solve that meets δ
@@ -151,8 +152,11 @@ class MorphImpl final : public Morpher::Impl {
         penalty.update_multipliers(P.state());
         eps /= std::pow(m_, 0.9);
         // Once the boundary is reached only δ* is left to meet: no intermediate δ on the way
-        // (with μ still at μ₀, δ/m would take nine AL iterations from δ₀ to δ*).
-        delta = emax <= tol_max ? delta_star : std::max(delta / m_, delta_star);
+        // (with μ still at μ₀, δ/m would take nine AL iterations from δ₀ to δ*). The same
+        // where this subproblem took no Newton step: its iterate met δ_k as it was, and δ/m
+        // per iteration left the multiplier updates with nothing to move (bl_circle_p3: three
+        // AL iterations in a row without a step).
+        delta = emax <= tol_max || result.newton == newton_before ? delta_star : std::max(delta / m_, delta_star);
       } else {  // lines 16–21
         m_ *= options_.m_factor;
         set_mu();

@@ -277,6 +277,35 @@ TEST(Morph, CutShortSolvesBetweenWeightUpdatesKeepTheQualityForHalfTheSteps) {
   EXPECT_LT(10 * steps[1], 7 * steps[0]);
 }
 
+// Paper 000 §5.3, small: bench/geo/bl_circle_2d.geo at h_wall 0.8, h_far 5, h_first 1e-4
+// (tests/data/bl_circle_coarse.msh, 275 nodes, first-layer stretching 1 : 8000), elevated to
+// P3 with the wall's nodes sent to the unit circle. After the first AL iteration the wall is
+// 1e-6 away, and a multiplier update at the loose δ_k moved nothing: three AL iterations
+// without a Newton step (7 in all) before δ went to δ* at once.
+TEST(Morph, CurvesAThinBoundaryLayerToOrderThreeWithoutIdleIterations) {
+  const Mesh linear = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/bl_circle_coarse.msh");
+  const Mesh mesh = elevate_order(linear, 3);
+  const Topology topo = build_topology(mesh);
+  BoundaryTargets bc;
+  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
+  bc.target = mesh.x;
+  bc.normal = Eigen::MatrixXd::Zero(2, static_cast<Eigen::Index>(mesh.n_nodes()));
+  const std::vector<std::int32_t> wall = mesh.group_nodes(*mesh.find_group("wall"));
+  for (std::int32_t node : mesh.group_nodes(*mesh.find_group("farfield"))) bc.role[node] = NodeRole::Fixed;
+  for (std::int32_t node : wall) {
+    bc.role[node] = NodeRole::Prescribed;
+    bc.target.col(node) = mesh.x.col(node).normalized();
+  }
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = Morpher(mesh, topo, bc, MorphOptions{}).solve(bc.target, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  for (std::int32_t node : wall) EXPECT_NEAR(x.col(node).norm(), 1.0, 1e-8) << node;
+  EXPECT_LE(r.outer, 4);
+}
+
 // Paper 001's Test 1: the unit square's boundary squeezed to 1% of its height (y ↦ 0.01 y).
 // The distortion's barrier holds the thinnest cells against the penalty and the augmented
 // Lagrangian stalls short of the boundary (DESIGN §6); the untangle pass from there places
