@@ -30,7 +30,7 @@ bench: build
 	@scripts/bench $(BUILD)
 
 sanitize-test: deps
-	@cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMESHMORPH_SANITIZE=ON -DMESHMORPH_BUILD_BENCH=OFF >/dev/null
+	@cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMESHMORPH_SANITIZE=ON -DMESHMORPH_BUILD_BENCH=OFF -DMESHMORPH_BUILD_PYTHON=OFF >/dev/null
 	@cmake --build build-sanitize -j $(JOBS)
 	@cd build-sanitize && ctest --output-on-failure -j $(JOBS) -LE slow
 

@@ -75,11 +75,14 @@ class MeshChecker {
       const auto node = index.find(tag);
       const std::string where = t.file.string() + ":" + std::to_string(t.line[i]) + ": node " + std::to_string(tag);
       const std::string key = " (" + c_.file.string() + ": " + w.path + ")";
-      if (node == index.end()) throw InputError(where + " is not in " + c_.mesh.filename().string() + key);
+      if (node == index.end()) throw InputError(where + " is not in " + mesh_name() + key);
       if (!in_group[static_cast<std::size_t>(node->second)])
         throw InputError(where + " is not in group \"" + bc.group + "\"" + key);
     }
   }
+
+  // A case read without its mesh (the Python module's Morpher) names it by role.
+  std::string mesh_name() const { return c_.mesh.empty() ? std::string("the mesh") : c_.mesh.filename().string(); }
 
   void boundary(const BoundaryCondition& bc) const {
     const JsonWhere w{c_.file.string(), bc.key_path};
@@ -89,7 +92,7 @@ class MeshChecker {
         if (!known.empty()) known += ", ";
         known += g.name.empty() ? std::to_string(g.tag) : g.name + " (" + std::to_string(g.tag) + ")";
       }
-      w.key("group").fail("no physical group \"" + bc.group + "\" in " + c_.mesh.filename().string() +
+      w.key("group").fail("no physical group \"" + bc.group + "\" in " + mesh_name() +
                           (known.empty() ? std::string(" (it has no groups)") : " (it has: " + known + ")"));
     }
     std::visit(

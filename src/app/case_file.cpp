@@ -111,7 +111,7 @@ std::filesystem::path output_path(const json& j, const JsonWhere& w, const std::
 
 }  // namespace
 
-CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file) {
+CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file, bool mesh_required) {
   const std::string name = file.string();
   json root;
   try {
@@ -138,7 +138,8 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   CaseFile c;
   c.file = file;
   detail::ObjectReader r(root, JsonWhere{name, ""});
-  c.mesh = detail::existing_file(detail::read_string(r.required("mesh"), r.at("mesh")), base, r.at("mesh"));
+  if (const json* j = mesh_required ? &r.required("mesh") : r.optional("mesh"))
+    c.mesh = detail::existing_file(detail::read_string(*j, r.at("mesh")), base, r.at("mesh"));
   if (const json* j = r.optional("order")) {
     const long long order = detail::read_integer(*j, r.at("order"));
     if (order < 1 || order > 4) r.at("order").fail("expected an order from 1 to 4, found " + j->dump());

@@ -193,5 +193,17 @@ TEST_F(CaseFileTest, DuplicateKeysAreRejectedWithTheirPath) {
   EXPECT_NE(e.find("case.json: boundary[1].rotate.degrees: duplicate key"), std::string::npos) << e;
 }
 
+// The Python module's Morpher brings its mesh in memory: its case has no "mesh" key, and a
+// "mesh" that is there must still exist.
+TEST_F(CaseFileTest, AMeshIsOptionalWhereTheCallerHasOne) {
+  const std::string text = R"({"boundary": [{"group": "inner", "translate": [1, 0]}], "options": {"alpha": 4}})";
+  const CaseFile c = parse_case_file(text, dir_.path() / "Morpher", false);
+  EXPECT_TRUE(c.mesh.empty());
+  ASSERT_EQ(c.boundary.size(), 1u);
+  EXPECT_EQ(c.options["alpha"], 4);
+  EXPECT_NE(error_of(text).find("missing key \"mesh\""), std::string::npos);
+  EXPECT_THROW(parse_case_file(R"({"mesh": "none.msh"})", dir_.path() / "Morpher", false), InputError);
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -49,7 +49,7 @@ struct BoundaryCondition {
 /// the case file; unset optional keys stay empty.
 struct CaseFile {
   std::filesystem::path file;        ///< the case file as given (used in messages)
-  std::filesystem::path mesh;        ///< exists
+  std::filesystem::path mesh;        ///< exists (empty where parse_case_file did not require it)
   std::optional<int> order;          ///< 1–4
   std::vector<BoundaryCondition> boundary;
   std::optional<LevelSet> interface;
@@ -69,7 +69,9 @@ struct CaseFile {
 CaseFile read_case_file(const std::filesystem::path& path);
 
 /// The same, from JSON text; `file` names it in messages and is the base of relative paths.
-CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file);
+/// Without `mesh_required` a case may leave out "mesh" (CaseFile::mesh stays empty): the
+/// Python module's Morpher has its mesh in memory.
+CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file, bool mesh_required = true);
 
 /// Checks a case against its loaded mesh: every boundary group exists (by name or number),
 /// every vector has mesh.dim entries, `rotate` has an axis exactly in 3D, cylinder and torus

@@ -1,0 +1,75 @@
+# SPDX-License-Identifier: MIT
+"""meshmorph in Python: read and write meshes, measure their quality, and morph them.
+
+    import meshmorph
+    mesh = meshmorph.read_mesh("annulus.msh")
+    m = meshmorph.Morpher(mesh, [{"group": "inner", "rotate": {"center": [0, 0], "degrees": 60}},
+                                 {"group": "outer", "fixed": True}])
+    result = m.solve()          # the report of `meshmorph morph`, and "points"
+    mesh.points = result["points"]
+    mesh.write("rotated.vtu")
+
+Points are NumPy arrays of shape (n_nodes, dim), copied in and out. Bad input raises
+InputError (a ValueError) with the message the command line prints; a file that cannot be
+read or written raises IoError (an OSError). docs/python.md has the whole interface.
+"""
+import json as _json
+
+from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality, read_mesh, set_log_level
+from ._meshmorph import MorphSession as _MorphSession
+
+__all__ = ["InputError", "IoError", "Mesh", "Morpher", "elevate", "quality", "read_mesh", "set_log_level",
+           "__version__"]
+
+
+def _plain(value):
+    """NumPy arrays and scalars in a boundary list or options, as JSON takes them."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"{type(value).__name__} is not a JSON value")
+
+
+class Morpher:
+    """Morphs `mesh` by the augmented Lagrangian of paper 000 (`meshmorph morph`).
+
+    `boundary` is the "boundary" list of a case file (docs/case-file.md): each entry a group
+    and its motion (fixed, translate, rotate, scale, project, displace, slide). `options`
+    are the case file's morph options (docs/morph.md), `order` elevates the mesh first as the
+    case file's "order" does. Relative paths (displacement tables, level-set files) are read
+    from the current folder. The mesh is copied; it must be valid.
+
+    Each solve() starts from where the last one ended, with the multipliers, penalty and
+    weights it left (paper 000 §5.5): a time series is solve(t) for increasing t, and a
+    shape-optimization loop is solve(targets=...) with new boundary positions each time.
+    """
+
+    def __init__(self, mesh, boundary, options=None, order=None, threads=0):
+        case = {"boundary": boundary}
+        if options is not None:
+            case["options"] = options
+        if order is not None:
+            case["order"] = order
+        self._session = _MorphSession(mesh, _json.dumps(case, default=_plain), threads)
+
+    @property
+    def mesh(self):
+        """The input mesh (elevated to `order`): the distortion is measured against it."""
+        return self._session.mesh
+
+    @property
+    def points(self):
+        """The current node positions, (n_nodes, dim)."""
+        return self._session.points
+
+    def solve(self, t=1.0, targets=None):
+        """Moves the nodes towards the boundary motion at fraction `t` of its path or, when
+        `targets` (an (n_nodes, dim) array) is given, towards the positions it holds for the
+        nodes of the moving groups (its other rows are not used, but must be finite).
+
+        Returns the report of DESIGN §3.3 as a dict, with "points" (n_nodes, dim) added. When
+        "converged" is False the points are still a valid mesh, the last valid iterate.
+        """
+        text = self._session.solve_at(t) if targets is None else self._session.solve_to(targets)
+        report = _json.loads(text)
+        report["points"] = self._session.points
+        return report

@@ -1,0 +1,145 @@
+# SPDX-License-Identifier: MIT
+"""meshmorph's Python module: meshes in and out, quality, and the errors of bad input."""
+import os
+import pathlib
+import tempfile
+import unittest
+
+import numpy as np
+
+import meshmorph
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+ANNULUS = ROOT / "examples" / "meshes" / "annulus.msh"
+SPHERE_P2 = ROOT / "examples" / "meshes" / "sphere_in_box_p2.msh"
+
+
+class MeshTest(unittest.TestCase):
+    def setUp(self):
+        self.mesh = meshmorph.read_mesh(str(ANNULUS))
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = pathlib.Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_reads_sizes_groups_and_cells(self):
+        m = self.mesh
+        self.assertEqual((m.dim, m.order, m.n_nodes, m.n_cells), (2, 1, 1265, 2366))
+        self.assertEqual(m.points.shape, (1265, 2))
+        self.assertEqual([(g["name"], g["dim"]) for g in m.groups], [("outer", 1), ("inner", 1), ("domain", 2)])
+        inner = m.group_nodes("inner")
+        # The inner circle has radius 0.4 (examples/meshes/annulus.geo).
+        np.testing.assert_allclose(np.linalg.norm(m.points[inner], axis=1), 0.4, rtol=1e-12)
+        self.assertTrue(np.array_equal(m.group_nodes("2"), inner))  # a group by number
+        (block,) = m.cell_blocks
+        self.assertEqual((block["type"], block["order"], block["nodes"].shape), ("triangle", 1, (2366, 3)))
+        self.assertEqual(m.node_tags.shape, (1265,))
+
+    def test_points_are_copies_and_round_trip_through_every_format(self):
+        m = self.mesh
+        moved = m.points * 2.0 + np.array([1.0, -3.0])
+        m.points[0, 0] = 99.0  # a copy: the mesh is unchanged
+        self.assertNotEqual(m.points[0, 0], 99.0)
+        m.points = moved
+        self.assertTrue(np.array_equal(m.points, moved))
+        for name, binary in [("a.msh", False), ("b.msh", True), ("c.vtu", False), ("d.vtu", True), ("e.mesh", False)]:
+            with self.subTest(name=name, binary=binary):
+                m.write(str(self.dir / name), binary=binary)
+                back = meshmorph.read_mesh(str(self.dir / name))
+                self.assertTrue(np.array_equal(back.points, moved))
+                self.assertTrue(np.array_equal(back.cell_blocks[0]["nodes"], m.cell_blocks[0]["nodes"]))
+        self.assertEqual(sorted(os.listdir(self.dir)), ["a.msh", "b.msh", "c.vtu", "d.vtu", "e.mesh"])
+
+    def test_a_high_order_mesh_keeps_its_nodes(self):
+        m = meshmorph.read_mesh(str(SPHERE_P2))
+        self.assertEqual((m.dim, m.order), (3, 2))
+        m.write(str(self.dir / "p2.vtu"))  # VTK's Lagrange ordering on the way, Gmsh's back
+        back = meshmorph.read_mesh(str(self.dir / "p2.vtu"))
+        self.assertTrue(np.array_equal(back.points, m.points))
+        self.assertTrue(np.array_equal(back.cell_blocks[0]["nodes"], m.cell_blocks[0]["nodes"]))
+
+    def test_quality_with_and_without_a_reference(self):
+        q = meshmorph.quality(self.mesh)
+        self.assertTrue(q["valid"])
+        self.assertEqual(q["inverted_elements"], 0)
+        self.assertNotIn("min_quality", q)
+        self.assertEqual(q["shape_quality"].shape, (2366,))
+        self.assertGreater(q["min_shape_quality"], 0.3)
+        self.assertLessEqual(q["min_shape_quality"], q["mean_shape_quality"])
+        same = meshmorph.quality(self.mesh, self.mesh)
+        self.assertAlmostEqual(same["min_quality"], 1.0, places=12)
+        # A similarity (rotation, scaling) of the whole mesh distorts nothing.
+        turned = self.mesh.copy()
+        c, s = np.cos(0.3), np.sin(0.3)
+        turned.points = 2.5 * self.mesh.points @ np.array([[c, s], [-s, c]])
+        self.assertAlmostEqual(meshmorph.quality(turned, self.mesh)["min_quality"], 1.0, places=12)
+        # Folding one node across its neighbours inverts cells.
+        folded = self.mesh.copy()
+        p = folded.points
+        interior = np.setdiff1d(np.arange(p.shape[0]), np.union1d(folded.group_nodes("inner"), folded.group_nodes("outer")))
+        p[interior[0]] = -p[interior[0]]
+        folded.points = p
+        q = meshmorph.quality(folded, self.mesh)
+        self.assertFalse(q["valid"])
+        self.assertGreater(q["inverted_elements"], 0)
+
+    def test_elevate(self):
+        p2 = meshmorph.elevate(self.mesh, 2)
+        self.assertEqual(p2.order, 2)
+        self.assertTrue(np.array_equal(p2.points[: self.mesh.n_nodes], self.mesh.points))
+        self.assertTrue(meshmorph.quality(p2)["valid"])
+        with self.assertRaisesRegex(meshmorph.InputError, "expected an order from 1 to 4, found 5"):
+            meshmorph.elevate(self.mesh, 5)
+
+
+class MeshErrorTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = pathlib.Path(self.tmp.name)
+        self.mesh = meshmorph.read_mesh(str(ANNULUS))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_a_missing_file_is_an_os_error(self):
+        with self.assertRaises(OSError) as e:
+            meshmorph.read_mesh(str(self.dir / "none.msh"))
+        self.assertIsInstance(e.exception, meshmorph.IoError)
+        self.assertIn("none.msh", str(e.exception))
+
+    def test_a_truncated_file_names_its_line(self):
+        lines = ANNULUS.read_text().splitlines(keepends=True)
+        cut = self.dir / "cut.msh"
+        cut.write_text("".join(lines[: len(lines) // 2]))
+        with self.assertRaises(ValueError) as e:
+            meshmorph.read_mesh(str(cut))
+        self.assertIsInstance(e.exception, meshmorph.InputError)
+        self.assertRegex(str(e.exception), r"cut\.msh.*line \d+")
+
+    def test_points_of_the_wrong_shape_or_not_finite(self):
+        with self.assertRaisesRegex(meshmorph.InputError, r"Mesh.points: expected an array of shape \(1265, 2\), found \(1265, 3\)"):
+            self.mesh.points = np.zeros((1265, 3))
+        bad = self.mesh.points
+        bad[7, 1] = np.nan
+        with self.assertRaisesRegex(meshmorph.InputError, "Mesh.points: row 7 is not finite"):
+            self.mesh.points = bad
+        self.assertTrue(np.isfinite(self.mesh.points).all())  # unchanged
+
+    def test_an_unknown_group(self):
+        with self.assertRaisesRegex(meshmorph.InputError, 'no physical group "wall"'):
+            self.mesh.group_nodes("wall")
+
+    def test_writing_into_a_missing_folder_writes_nothing(self):
+        with self.assertRaises(OSError):
+            self.mesh.write(str(self.dir / "no" / "out.msh"))
+        self.assertEqual(os.listdir(self.dir), [])
+
+    def test_an_unknown_log_level(self):
+        with self.assertRaisesRegex(meshmorph.InputError, "expected \"quiet\""):
+            meshmorph.set_log_level("loud")
+        meshmorph.set_log_level("quiet")
+
+
+if __name__ == "__main__":
+    unittest.main()

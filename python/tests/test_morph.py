@@ -1,0 +1,153 @@
+# SPDX-License-Identifier: MIT
+"""meshmorph.Morpher: exact affine motions, the same result as `meshmorph morph`, time series,
+explicit targets, and the errors of bad input."""
+import json
+import os
+import pathlib
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import meshmorph
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+ANNULUS = ROOT / "examples" / "meshes" / "annulus.msh"
+SPHERE = ROOT / "examples" / "meshes" / "sphere_in_box.msh"
+ROTATE = [{"group": "inner", "rotate": {"center": [0, 0], "degrees": 60}}, {"group": "outer", "fixed": True}]
+
+
+def rotation(degrees):
+    a = np.radians(degrees)
+    return np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+
+
+class MorpherTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.annulus = meshmorph.read_mesh(str(ANNULUS))
+
+    def test_affine_motions_of_the_whole_boundary_are_exact(self):
+        x = self.annulus.points
+        R = rotation(35.0)
+        affine = {"rotate": (x @ R.T, [{"group": g, "rotate": {"center": [0, 0], "degrees": 35}} for g in ("inner", "outer")]),
+                  "scale": ((x - 0.5) * 1.7 + 0.5, [{"group": g, "scale": {"center": [0.5, 0.5], "factor": 1.7}} for g in ("inner", "outer")]),
+                  "translate": (x + [3.0, -1.0], [{"group": g, "translate": [3.0, -1.0]} for g in ("inner", "outer")])}
+        for name, (expected, boundary) in affine.items():
+            with self.subTest(motion=name):
+                r = meshmorph.Morpher(self.annulus, boundary).solve()
+                self.assertTrue(r["converged"], r["message"])
+                self.assertLess(np.abs(r["points"] - expected).max(), 1e-10)
+                self.assertAlmostEqual(r["min_quality"], 1.0, places=9)
+
+    def test_a_3d_translation_of_the_whole_boundary_is_exact(self):
+        mesh = meshmorph.read_mesh(str(SPHERE))
+        boundary = [{"group": g, "translate": [0.5, 0.25, -2.0]} for g in ("box", "sphere")]
+        r = meshmorph.Morpher(mesh, boundary).solve()
+        self.assertTrue(r["converged"], r["message"])
+        self.assertLess(np.abs(r["points"] - (mesh.points + [0.5, 0.25, -2.0])).max(), 1e-10)
+
+    def test_the_same_mesh_as_the_command_line(self):
+        # One thread each: the results are then equal bit for bit.
+        with tempfile.TemporaryDirectory() as tmp:
+            case = pathlib.Path(tmp) / "case.json"
+            case.write_text(json.dumps({"mesh": str(ANNULUS), "boundary": ROTATE, "output": "out.vtu", "report": "r.json"}))
+            subprocess.run([os.environ["MESHMORPH_BIN"], "--threads", "1", "--quiet", "morph", str(case)], check=True,
+                           stdout=subprocess.DEVNULL)
+            cli = meshmorph.read_mesh(str(pathlib.Path(tmp) / "out.vtu"))
+            cli_report = json.loads((pathlib.Path(tmp) / "r.json").read_text())
+        r = meshmorph.Morpher(self.annulus, ROTATE, threads=1).solve()
+        self.assertTrue(np.array_equal(r["points"], cli.points))
+        self.assertEqual(r["iterations"], cli_report["iterations"])
+        self.assertEqual(r["history"], cli_report["history"])
+        for key in ("valid", "inverted_elements", "min_quality", "boundary_error_max", "converged", "message"):
+            self.assertEqual(r[key], cli_report[key], key)
+
+    def test_a_time_series_carries_its_state(self):
+        m = meshmorph.Morpher(self.annulus, ROTATE)
+        half = m.solve(0.5)
+        full = m.solve(1.0)
+        self.assertTrue(half["converged"] and full["converged"])
+        self.assertEqual({row["step"] for row in half["history"]}, {1})
+        self.assertEqual({row["step"] for row in full["history"]}, {2})
+        inner = self.annulus.group_nodes("inner")
+        x = self.annulus.points
+        for r, degrees in ((half, 30.0), (full, 60.0)):
+            np.testing.assert_allclose(r["points"][inner], x[inner] @ rotation(degrees).T, atol=1e-8)
+        self.assertTrue(np.array_equal(m.points, full["points"]))
+
+    def test_explicit_targets_move_the_moving_groups_only(self):
+        x = self.annulus.points
+        inner = self.annulus.group_nodes("inner")
+        # The case decides which nodes move, the targets where they go: the other rows are not read.
+        targets = np.full_like(x, 1e6)
+        targets[inner] = x[inner] @ rotation(60.0).T
+        r = meshmorph.Morpher(self.annulus, ROTATE).solve(targets=targets)
+        self.assertTrue(r["converged"], r["message"])
+        ref = meshmorph.Morpher(self.annulus, ROTATE).solve()
+        np.testing.assert_allclose(r["points"], ref["points"], atol=1e-8)
+        outer = self.annulus.group_nodes("outer")
+        self.assertTrue(np.array_equal(r["points"][outer], x[outer]))
+
+    def test_a_run_that_misses_its_goal_says_so_and_stays_valid(self):
+        r = meshmorph.Morpher(self.annulus, ROTATE, options={"max_outer": 1}).solve()
+        self.assertFalse(r["converged"])
+        self.assertIn("not reached within 1 augmented-Lagrangian iterations", r["message"])
+        moved = self.annulus.copy()
+        moved.points = r["points"]
+        self.assertTrue(meshmorph.quality(moved)["valid"])
+
+    def test_order_elevation_curves_nothing_on_a_rotation_of_everything(self):
+        boundary = [{"group": g, "rotate": {"center": [0, 0], "degrees": 90}} for g in ("inner", "outer")]
+        m = meshmorph.Morpher(self.annulus, boundary, order=2)
+        self.assertEqual(m.mesh.order, 2)
+        r = m.solve()
+        self.assertTrue(r["converged"], r["message"])
+        self.assertLess(np.abs(r["points"] - m.mesh.points @ rotation(90.0).T).max(), 1e-10)
+
+
+class MorpherErrorTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.annulus = meshmorph.read_mesh(str(ANNULUS))
+
+    def test_bad_cases(self):
+        cases = [
+            ([{"group": "wall", "fixed": True}], None, r'Morpher: boundary\[0\]\.group: no physical group "wall" in the mesh'),
+            ([{"group": "inner", "spin": 3}], None, r"Morpher: boundary\[0\]\.spin: unknown key"),
+            ([{"group": "inner", "translate": [1, 2, 3]}], None,
+             r"Morpher: boundary\[0\]\.translate: expected 2 numbers for a 2D mesh, found 3"),
+            (ROTATE, {"alpha": -1}, r"Morpher: options\.alpha: expected a number in \[0\.0, 100\.0\], found -1"),
+            (ROTATE, {"speed": 2}, r"Morpher: options\.speed: unknown option"),
+            (ROTATE, {"method": "laplace"}, r'options\.method: the Morpher runs "morph"'),
+        ]
+        for boundary, options, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaisesRegex(meshmorph.InputError, message):
+                    meshmorph.Morpher(self.annulus, boundary, options=options)
+
+    def test_an_inverted_mesh(self):
+        folded = self.annulus.copy()
+        p = folded.points
+        interior = np.setdiff1d(np.arange(p.shape[0]), np.union1d(folded.group_nodes("inner"), folded.group_nodes("outer")))
+        p[interior[0]] = -p[interior[0]]
+        folded.points = p
+        with self.assertRaisesRegex(meshmorph.InputError, r"Morpher: the mesh has \d+ inverted elements"):
+            meshmorph.Morpher(folded, ROTATE)
+
+    def test_bad_solve_arguments(self):
+        m = meshmorph.Morpher(self.annulus, ROTATE)
+        with self.assertRaisesRegex(meshmorph.InputError, r"t must be in \[0, 1\]"):
+            m.solve(1.5)
+        with self.assertRaisesRegex(meshmorph.InputError, r"targets: expected an array of shape \(1265, 2\), found \(4,\)"):
+            m.solve(targets=np.zeros(4))
+        targets = self.annulus.points
+        targets[3, 0] = np.inf
+        with self.assertRaisesRegex(meshmorph.InputError, "targets: row 3 is not finite"):
+            m.solve(targets=targets)
+        self.assertTrue(np.array_equal(m.points, self.annulus.points))  # nothing ran
+
+
+if __name__ == "__main__":
+    unittest.main()
