@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// MSH 4.1 sections ($Entities, $Nodes, $Elements), ASCII and binary (size_t = 8 bytes).
+// MSH 4.1 sections ($Entities, $PartitionedEntities, $Nodes, $Elements), ASCII and binary
+// (size_t = 8 bytes).
 #include <string>
 #include <vector>
 
@@ -41,6 +42,50 @@ void read_msh41_entities(MshState& s) {
   for (int dim = 0; dim < 4; ++dim) {
     for (std::uint64_t e = 0; e < n[dim]; ++e) {
       const int tag = small_int(s, "entity tag");
+      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
+      const std::uint64_t n_phys = count(s, "number of physical tags");
+      s.check_count(n_phys, s.binary ? 4 : 2, here(s));
+      for (std::uint64_t k = 0; k < n_phys; ++k) {
+        const int phys = small_int(s, "physical tag");
+        if (k == 0) s.entity_physical[{dim, tag}] = phys;
+      }
+      if (dim > 0) {
+        const std::uint64_t n_bound = count(s, "number of bounding entities");
+        s.check_count(n_bound, s.binary ? 4 : 2, here(s));
+        for (std::uint64_t k = 0; k < n_bound; ++k) small_int(s, "bounding entity tag");
+      }
+    }
+  }
+}
+
+// A partitioned file (gmsh -part N) puts its elements on the entities of this section, each a
+// piece of a model entity in one or more partitions, and gives them the physical tags there;
+// its $Entities holds the model's entities, which no element names. Ghost entities and
+// partition numbers are read past: the mesh is read whole. Entities inside a parent of higher
+// dimension are the interfaces between partitions: they carry the parent's physical tags,
+// and their elements are left out.
+void read_msh41_partitioned_entities(MshState& s) {
+  begin_binary(s);
+  count(s, "number of partitions");
+  const std::uint64_t n_ghosts = count(s, "number of ghost entities");
+  s.check_count(n_ghosts, s.binary ? 8 : 4, here(s));
+  for (std::uint64_t g = 0; g < n_ghosts; ++g) {
+    small_int(s, "ghost entity tag");
+    small_int(s, "ghost entity partition");
+  }
+  std::uint64_t n[4];
+  for (auto& v : n) {
+    v = count(s, "number of partitioned entities");
+    s.check_count(v, s.binary ? 28 : 8, here(s));
+  }
+  for (int dim = 0; dim < 4; ++dim) {
+    for (std::uint64_t e = 0; e < n[dim]; ++e) {
+      const int tag = small_int(s, "partitioned entity tag");
+      if (small_int(s, "parent entity dimension") != dim) s.partition_interfaces.insert({dim, tag});
+      small_int(s, "parent entity tag");
+      const std::uint64_t n_parts = count(s, "number of partitions of the entity");
+      s.check_count(n_parts, s.binary ? 4 : 2, here(s));
+      for (std::uint64_t k = 0; k < n_parts; ++k) small_int(s, "partition tag");
       for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
       const std::uint64_t n_phys = count(s, "number of physical tags");
       s.check_count(n_phys, s.binary ? 4 : 2, here(s));
@@ -132,6 +177,7 @@ void read_msh41_elements(MshState& s) {
     seen += n;
     if (seen > n_elements)
       c.fail_at(here(s), "element blocks hold more elements than the " + std::to_string(n_elements) + " announced");
+    const bool interface = s.partition_interfaces.contains({dim, entity});
     const auto it = s.entity_physical.find({dim, entity});
     const std::int32_t physical = it == s.entity_physical.end() ? 0 : it->second;
     CellBlock& block = s.builder.block(fo.type, fo.order);
@@ -142,7 +188,7 @@ void read_msh41_elements(MshState& s) {
       count(s, "element tag");
       for (auto& t : tags)
         t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
-      s.add_element(block, tags.data(), physical, entity, at);
+      if (!interface) s.add_element(block, tags.data(), physical, entity, at);
     }
   }
   if (seen != n_elements)

@@ -101,7 +101,7 @@ void skip_section(Cursor& c, std::string_view name, std::size_t at) {
 
 Mesh read_msh(const std::filesystem::path& path) {
   const std::string data = detail::read_file(path);
-  detail::MshState s{detail::Cursor(path, data), {}, {}, false, false, {}, {}};
+  detail::MshState s{detail::Cursor(path, data), {}, {}, false, false, {}, {}, {}};
   detail::Cursor& c = s.cur;
   if (!c.skip_space()) c.fail_at(0, "empty file");
   c.expect("$MeshFormat");
@@ -119,6 +119,8 @@ Mesh read_msh(const std::filesystem::path& path) {
       detail::read_physical_names(s);
     } else if (name == "Entities" && version == 41) {
       detail::read_msh41_entities(s);
+    } else if (name == "PartitionedEntities" && version == 41) {
+      detail::read_msh41_partitioned_entities(s);
     } else if (name == "Nodes") {
       if (s.have_nodes) c.fail_at(at, "second $Nodes section");
       version == 41 ? detail::read_msh41_nodes(s) : detail::read_msh22_nodes(s);
@@ -133,7 +135,8 @@ Mesh read_msh(const std::filesystem::path& path) {
       detail::skip_section(c, name, at);
     }
     // After binary data, the end marker is located by byte offset.
-    c.binary = s.binary && (name == "Nodes" || name == "Elements" || name == "Entities" || name == "NodeData");
+    c.binary = s.binary && (name == "Nodes" || name == "Elements" || name == "Entities" || name == "PartitionedEntities" ||
+                            name == "NodeData");
     c.expect("$End" + std::string(name));
     c.binary = false;
   }

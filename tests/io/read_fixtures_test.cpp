@@ -42,6 +42,27 @@ TEST(ReadFixtures, GmshP2TrianglesInAllFourEncodingsAgree) {
   }
 }
 
+// gmsh -part 3: the elements name the entities of $PartitionedEntities, where the physical
+// tags are; read whole, the mesh has the unpartitioned file's cells and groups.
+TEST(ReadFixtures, GmshPartitionedFilesKeepTheirPhysicalGroups) {
+  const Mesh whole = read_mesh(data("gmsh_tri6_41a.msh"));
+  for (const char* name : {"gmsh_tri6_part3_41a.msh", "gmsh_tri6_part3_41b.msh"}) {
+    SCOPED_TRACE(name);
+    const Mesh m = read_mesh(data(name));
+    EXPECT_EQ(m.n_nodes(), whole.n_nodes());
+    EXPECT_EQ(count(m.cells, ElementType::Triangle, 2), 121u);
+    EXPECT_EQ(count(m.facets, ElementType::Line, 2), 35u);
+    EXPECT_EQ(test::sorted_groups(m), test::sorted_groups(whole));
+    for (const CellBlock& b : m.cells)
+      for (const std::int32_t t : b.physical) EXPECT_EQ(t, 10);
+    for (const char* group : {"hole wall", "outer", "fluid"}) {
+      const auto g = m.find_group(group);
+      ASSERT_TRUE(g.has_value()) << group;
+      EXPECT_EQ(m.group_nodes(*g).size(), whole.group_nodes(*whole.find_group(group)).size()) << group;
+    }
+  }
+}
+
 TEST(ReadFixtures, GmshTetrahedraOrder1And3) {
   const Mesh p3 = read_mesh(data("gmsh_tet20_41b.msh"));
   const Mesh p1 = read_mesh(data("gmsh_tet4_22a.msh"));

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,9 @@ struct MshState {
   bool have_nodes = false;
   /// (entity dim, entity tag) → first physical tag of the entity (MSH 4.1 $Entities).
   std::map<std::pair<int, int>, std::int32_t> entity_physical;
+  /// Entities of $PartitionedEntities that lie inside a parent of higher dimension: the
+  /// interfaces between partitions, whose elements are not facets of the model.
+  std::set<std::pair<int, int>> partition_interfaces;
   /// A scalar $NodeData field: the time step held, a value per node, which nodes have one,
   /// and where its last section starts (for the "node without a value" error).
   struct NodeField {
@@ -55,6 +59,7 @@ struct MshState {
 double finite_or_fail(const Cursor& cur, double v, std::size_t at, const char* what);
 
 void read_msh41_entities(MshState& s);
+void read_msh41_partitioned_entities(MshState& s);
 void read_msh41_nodes(MshState& s);
 void read_msh41_elements(MshState& s);
 void read_msh22_nodes(MshState& s);
