@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -95,6 +96,11 @@ class MeshChecker {
       w.key("group").fail("no physical group \"" + bc.group + "\" in " + mesh_name() +
                           (known.empty() ? std::string(" (it has no groups)") : " (it has: " + known + ")"));
     }
+    // A name in $PhysicalNames that no element carries (an MSH 4.1 file without $Entities,
+    // where elements get their groups): a motion of it would move nothing.
+    if (mesh_.group_nodes(*mesh_.find_group(bc.group)).empty())
+      w.key("group").fail("physical group \"" + bc.group + "\" of " + mesh_name() +
+                          " has no elements: no element of the mesh carries its tag");
     std::visit(
         [&](const auto& m) {
           using M = std::decay_t<decltype(m)>;
@@ -137,6 +143,11 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
   for (const auto& bc : c.boundary) check.boundary(bc);
   if (c.interface) check.level_set(*c.interface);
   if (c.trim) check.level_set(*c.trim);
+  // Found before the run rather than by the writer after it.
+  const int order = std::max(mesh.order(), c.order.value_or(1));
+  if (c.output && c.output->extension() == ".mesh" && order > 1)
+    JsonWhere{c.file.string(), "output"}.fail("Medit .mesh holds linear cells only; the result is of order " +
+                                              std::to_string(order) + " (write .msh or .vtu)");
 }
 
 }  // namespace meshmorph

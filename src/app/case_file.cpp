@@ -165,7 +165,6 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   if (const json* j = r.optional("output")) c.output = output_path(*j, r.at("output"), base, true);
   if (const json* j = r.optional("report")) c.report = output_path(*j, r.at("report"), base, false);
   r.finish();
-  if (c.output_each_step && !c.output) r.at("output_each_step").fail("needs \"output\" to name the step files");
   return c;
 }
 

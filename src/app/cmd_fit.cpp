@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph fit CASE.json`: boundary and interface fitting to level sets (paper 003).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -72,11 +73,15 @@ FitSettings read_options(const CaseFile& c, int threads) {
   return s;
 }
 
-// The level set must cross the mesh: σ takes both signs over its nodes.
+// The level set must be a number at every node and cross the mesh: σ takes both signs over
+// its nodes.
 void check_crossing(const LevelSetFunction& sigma, const Mesh& mesh, const std::string& where) {
   double lo = 0.0, hi = 0.0;
   for (Eigen::Index i = 0; i < mesh.x.cols(); ++i) {
     const double v = sigma.value(mesh.x.col(i));
+    if (!std::isfinite(v))
+      throw InputError(where + ": the level set is " + (std::isnan(v) ? "not a number" : "infinite") + " at node " +
+                       std::to_string(mesh.node_tags.empty() ? i + 1 : mesh.node_tags[static_cast<std::size_t>(i)]));
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
@@ -203,13 +208,18 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   // it or a `slide` entry lets it move on its (axis-aligned) plane.
   const int d = mesh.dim;
   std::vector<FitTerm> terms;
-  if (c.interface) terms.push_back({compile(*interface), interface_nodes(mesh, topology, eta)});
+  std::vector<std::string> term_keys;  // the case key of each term, for messages
+  if (c.interface) {
+    terms.push_back({compile(*interface), interface_nodes(mesh, topology, eta)});
+    term_keys.push_back("interface");
+  }
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
   for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
   if (trim) {
     FitTerm t{compile(*trim), cut_nodes(mesh, cut)};
     for (std::int32_t node : t.nodes) std::fill_n(fixed.begin() + d * node, d, 0);
     terms.push_back(std::move(t));
+    term_keys.push_back("trim");
   }
   for (const BoundaryCondition& b : c.boundary) {
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(b.group));
@@ -218,6 +228,7 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
       FitTerm t{compile(checked_level_set(project->target, mesh, lso, where + ".project")), nodes};
       for (std::int32_t node : nodes) std::fill_n(fixed.begin() + d * node, d, 0);
       terms.push_back(std::move(t));
+      term_keys.push_back(b.key_path + ".project");
     } else if (std::holds_alternative<SlideMotion>(b.motion)) {
       int axis = -1;
       for (int k = 0; k < d && axis < 0; ++k) {
@@ -231,8 +242,17 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
       throw InputError(where + ": fit takes \"fixed\", \"slide\" and \"project\" entries (move the mesh with morph)");
     }
   }
-  for (FitTerm& t : terms) {  // a node stays where a fixed flag holds it: not fitted
-    std::erase_if(t.nodes, [&](std::int32_t node) { return fixed[static_cast<std::size_t>(d * node)] && fixed[static_cast<std::size_t>(d * node + d - 1)]; });
+  for (std::size_t k = 0; k < terms.size(); ++k) {  // a node stays where a fixed flag holds it: not fitted
+    std::vector<std::int32_t>& nodes = terms[k].nodes;
+    std::erase_if(nodes, [&](std::int32_t node) { return fixed[static_cast<std::size_t>(d * node)] && fixed[static_cast<std::size_t>(d * node + d - 1)]; });
+    // The level set crosses the mesh (check_crossing), but no facet lies on it at this
+    // resolution, or only fixed nodes do: a fit of nothing is not a fit.
+    if (nodes.empty())
+      throw InputError(a.case_file + ": " + term_keys[k] + ": no node to fit: " +
+                       (term_keys[k] == "interface" && std::all_of(eta.begin(), eta.end(), [&](std::uint8_t e) { return e == eta.front(); })
+                            ? "the material indicators (eq. 10, corrected by eq. 12) put every cell on one side of the level set; "
+                              "refine the mesh near it"
+                            : "the nodes on it are all fixed (boundary nodes are, unless a project or slide entry frees them)"));
   }
 
   const std::optional<std::filesystem::path> output = a.output.empty() ? c.output : std::optional(std::filesystem::path(a.output));

@@ -71,6 +71,9 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
                    const std::optional<std::filesystem::path>& report) {
   const std::string where = c ? c->file.string() + ": " : std::string();
   std::vector<OutputFile> outputs;
+  // The command line's -o may name the output that the case leaves out.
+  if (c && c->output_each_step && !output)
+    throw InputError(where + "output_each_step: needs \"output\" (or -o) to name the step files");
   if (output) {
     outputs.push_back({where + (c ? "output" : "-o"), *output});
     if (c && c->output_each_step)

@@ -43,6 +43,9 @@ const std::map<std::string, Expectation> kExpected = {
     {"negative_radius.json", {"negative_radius.json", ": trim.sphere.radius: expected a positive number, found -0.5"}},
     {"options_array.json", {"options_array.json", ": options: expected an object, found an array"}},
     {"missing_group_number.json", {"missing_group_number.json", ": boundary[0].group: no physical group \"9\""}},
+    {"group_without_elements.json",
+     {"group_without_elements.json", ": boundary[0].group: physical group \"lid\" of square_unused_group.msh has no elements"}},
+    {"medit_order_two.json", {"medit_order_two.json", ": output: Medit .mesh holds linear cells only; the result is of order 2"}},
 };
 
 std::vector<std::string> case_files() {

@@ -91,6 +91,23 @@ TEST_F(CaseCheck, MissingGroupListsTheGroupsOfTheMesh) {
             prefix() + "boundary[0].group: no physical group \"7\" in m.msh (it has: inner (1), outer (2), domain (10))");
 }
 
+// A group named in the file but carried by no element (an MSH 4.1 file without $Entities):
+// a motion of it would move nothing and report the boundary reached.
+TEST_F(CaseCheck, AGroupWithoutElementsIsAnError) {
+  Mesh m = unit_square();
+  m.groups.push_back({1, 3, "lid"});
+  EXPECT_EQ(error_of(R"("boundary": [{"group": "inner", "fixed": true}, {"group": "lid", "translate": [0, 1]}])", m),
+            prefix() + "boundary[1].group: physical group \"lid\" of m.msh has no elements: no element of the mesh "
+                       "carries its tag");
+}
+
+TEST_F(CaseCheck, AMeditOutputMustBeLinear) {
+  EXPECT_EQ(error_of(R"("order": 2, "output": "out.mesh")", unit_square()),
+            prefix() + "output: Medit .mesh holds linear cells only; the result is of order 2 (write .msh or .vtu)");
+  EXPECT_EQ(error_of(R"("order": 1, "output": "out.mesh")", unit_square()), "");
+  EXPECT_EQ(error_of(R"("order": 2, "output": "out.msh")", unit_square()), "");
+}
+
 TEST_F(CaseCheck, VectorsMustMatchTheMeshDimension) {
   EXPECT_EQ(error_of(R"("boundary": [{"group": "inner", "translate": [1, 0, 0]}])", unit_square()),
             prefix() + "boundary[0].translate: expected 2 numbers for a 2D mesh, found 3");

@@ -32,7 +32,6 @@ const BadCase kBadCases[] = {
     {"StepsNegative", R"({M, "steps": -3})", "steps: expected a step count"},
     {"StepsBool", R"({M, "steps": true})", "steps: expected an integer, found a boolean"},
     {"EachStepNumber", R"({M, "output_each_step": 1})", "output_each_step: expected true or false, found a number"},
-    {"EachStepWithoutOutput", R"({M, "output_each_step": true})", "output_each_step: needs \"output\""},
     {"OptionsArray", R"({M, "options": []})", "options: expected an object, found an array"},
     {"OutputNumber", R"({M, "output": 1})", "output: expected a string, found a number"},
     {"OutputExtension", R"({M, "output": "out.stl"})", "output: expected a .msh, .vtu or .mesh file name"},

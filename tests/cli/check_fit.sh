@@ -3,9 +3,10 @@
 # check_fit.sh MESHMORPH EXAMPLES WORK: `fit` end to end on the quad channel of example 04 —
 # the fitted run writes a valid mesh and a report with fit_error_max below eps_sigma; a
 # level set with no zero crossing in the mesh, a background field or distance box that does not
-# cover it, an unknown key of a distance level set and a metric of the other dimension exit 2
-# and write nothing; the circle through a distance field fits as well; a run out of Newton
-# steps exits 1 and writes no mesh; without splits the fit needs flat_edges.
+# cover it, a circle that no facet is left on, a level set that is NaN somewhere, an unknown
+# key of a distance level set and a metric of the other dimension exit 2 and write nothing;
+# the circle through a distance field fits as well; a run out of Newton steps exits 1 and
+# writes no mesh; without splits the fit needs flat_edges.
 set -u
 mm=$1 examples=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -57,6 +58,13 @@ expect budget 1 "above eps_sigma"
 
 make_case no_crossing '{"sphere": {"center": [10, 10], "radius": 0.1}}'
 expect no_crossing 2 "interface: the level set has no zero crossing in the mesh"
+# A circle around the node (1, 0.5), smaller than the cells: the level set crosses the mesh,
+# but eq. 10 puts every cell outside it and no facet is left to fit.
+make_case vanished '{"sphere": {"center": [1, 0.5], "radius": 0.01}}'
+expect vanished 2 "interface: no node to fit: the material indicators"
+[ ! -e "$work/vanished.vtu" ] && [ ! -e "$work/vanished.json" ] || fail "vanished: something was written"
+make_case not_a_number '{"expr": "y - 0.5 - sqrt(x - 1)"}'
+expect not_a_number 2 "interface: the level set is not a number at node"
 make_case wrong_metric "$circle" '{"metric": "mu303"}'
 expect wrong_metric 2 "options.metric: mu303 is a 3D metric"
 make_case no_group "$circle" '{"materials": "inner"}'

@@ -95,6 +95,12 @@ expect stepfolder 2 "sf_0001.vtu is a folder"
 for f in own.msh steps.json twice.vtu nofolder.vtu folder.vtu sf.vtu stepfolder.json; do
   [ ! -e "$work/$f" ] || fail "$f was written"
 done
+# output_each_step names its step files after -o where the case gives no "output", and
+# without either it is bad input.
+printf '{"mesh": "%s", "boundary": %s, "steps": 2, "output_each_step": true}\n' "$mesh" "$rotate" > "$work/each.case.json"
+"$mm" --quiet morph "$work/each.case.json" -o "$work/each.vtu" > /dev/null 2>&1 || fail "each: exit $?"
+[ -s "$work/each_0001.vtu" ] && [ -s "$work/each.vtu" ] || fail "each: the step files were not written after -o"
+expect each 2 'output_each_step: needs "output" (or -o)'
 own named own_0001.msh named.json  # named by the user: replaced
 expect named 0
 [ "$(cksum < "$work/own_0001.msh")" != "$before" ] || fail "named: the output was not written"
