@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <set>
+#include <string>
+#include <unordered_set>
 #include <utility>
 
 #include "meshmorph/error.h"
@@ -44,6 +46,30 @@ CellBlock& MeshBuilder::block(ElementType type, int order) {
   return blocks_.back();
 }
 
+namespace {
+
+// MSH 2.2 holds a cell of several physical groups once per group, with the same nodes: the
+// mesh keeps it once, with its first tag (a cell has one), where its repeats would overlap it.
+void drop_repeated_cells(CellBlock& b) {
+  const std::size_t k = static_cast<std::size_t>(b.n_nodes_per_cell());
+  std::unordered_set<std::string> seen;  // each cell's node list as bytes
+  std::size_t kept = 0;
+  for (std::size_t c = 0; c < b.n_cells(); ++c) {
+    if (!seen.emplace(reinterpret_cast<const char*>(b.cell(c)), sizeof(std::int32_t) * k).second) continue;
+    if (kept != c) {
+      std::copy_n(b.cell(c), k, b.cell(kept));
+      b.physical[kept] = b.physical[c];
+      b.entity[kept] = b.entity[c];
+    }
+    ++kept;
+  }
+  b.nodes.resize(kept * k);
+  b.physical.resize(kept);
+  b.entity.resize(kept);
+}
+
+}  // namespace
+
 Mesh MeshBuilder::finish(const std::string& where) {
   Mesh mesh;
   int top = 0;
@@ -63,8 +89,16 @@ Mesh MeshBuilder::finish(const std::string& where) {
     mesh.node_fields.emplace(name, Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(n)));
   }
   node_fields.clear();
+  for (const ExtraPhysical& e : extra_physical) {
+    if (topological_dim(e.type) == mesh.dim) continue;
+    CellBlock& b = block(e.type, e.order);
+    const std::vector<std::int32_t> nodes(b.cell(e.cell), b.cell(e.cell) + b.n_nodes_per_cell());
+    b.push_back(nodes.data(), e.tag, b.entity[e.cell]);
+  }
+  extra_physical.clear();
   for (CellBlock& b : blocks_) {
     if (b.nodes.empty()) continue;
+    if (topological_dim(b.type) == mesh.dim) drop_repeated_cells(b);
     (topological_dim(b.type) == mesh.dim ? mesh.cells : mesh.facets).push_back(std::move(b));
   }
   blocks_.clear();

@@ -45,10 +45,9 @@ void read_msh41_entities(MshState& s) {
       for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
       const std::uint64_t n_phys = count(s, "number of physical tags");
       s.check_count(n_phys, s.binary ? 4 : 2, here(s));
-      for (std::uint64_t k = 0; k < n_phys; ++k) {
-        const int phys = small_int(s, "physical tag");
-        if (k == 0) s.entity_physical[{dim, tag}] = phys;
-      }
+      std::vector<std::int32_t>& physical = s.entity_physical[{dim, tag}];
+      physical.clear();
+      for (std::uint64_t k = 0; k < n_phys; ++k) physical.push_back(small_int(s, "physical tag"));
       if (dim > 0) {
         const std::uint64_t n_bound = count(s, "number of bounding entities");
         s.check_count(n_bound, s.binary ? 4 : 2, here(s));
@@ -89,10 +88,9 @@ void read_msh41_partitioned_entities(MshState& s) {
       for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
       const std::uint64_t n_phys = count(s, "number of physical tags");
       s.check_count(n_phys, s.binary ? 4 : 2, here(s));
-      for (std::uint64_t k = 0; k < n_phys; ++k) {
-        const int phys = small_int(s, "physical tag");
-        if (k == 0) s.entity_physical[{dim, tag}] = phys;
-      }
+      std::vector<std::int32_t>& physical = s.entity_physical[{dim, tag}];
+      physical.clear();
+      for (std::uint64_t k = 0; k < n_phys; ++k) physical.push_back(small_int(s, "physical tag"));
       if (dim > 0) {
         const std::uint64_t n_bound = count(s, "number of bounding entities");
         s.check_count(n_bound, s.binary ? 4 : 2, here(s));
@@ -179,7 +177,8 @@ void read_msh41_elements(MshState& s) {
       c.fail_at(here(s), "element blocks hold more elements than the " + std::to_string(n_elements) + " announced");
     const bool interface = s.partition_interfaces.contains({dim, entity});
     const auto it = s.entity_physical.find({dim, entity});
-    const std::int32_t physical = it == s.entity_physical.end() ? 0 : it->second;
+    const std::vector<std::int32_t> none;
+    const std::vector<std::int32_t>& physical = it == s.entity_physical.end() ? none : it->second;
     CellBlock& block = s.builder.block(fo.type, fo.order);
     block.nodes.reserve(block.nodes.size() + n * static_cast<std::size_t>(k));
     tags.resize(static_cast<std::size_t>(k));
@@ -188,7 +187,10 @@ void read_msh41_elements(MshState& s) {
       count(s, "element tag");
       for (auto& t : tags)
         t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
-      if (!interface) s.add_element(block, tags.data(), physical, entity, at);
+      if (interface) continue;
+      s.add_element(block, tags.data(), physical.empty() ? 0 : physical.front(), entity, at);
+      for (std::size_t p = 1; p < physical.size(); ++p)
+        s.builder.extra_physical.push_back({fo.type, fo.order, block.n_cells() - 1, physical[p]});
     }
   }
   if (seen != n_elements)

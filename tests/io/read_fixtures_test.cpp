@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Files written by other tools: Gmsh 4.8.4 (tests/data/io/*.geo, see docs/formats.md) and
 // meshio 5.0.0 (from gmsh_tri6_41a.msh / gmsh_tet4_22a.msh).
+#include <algorithm>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -61,6 +63,31 @@ TEST(ReadFixtures, GmshPartitionedFilesKeepTheirPhysicalGroups) {
       EXPECT_EQ(m.group_nodes(*g).size(), whole.group_nodes(*whole.find_group(group)).size()) << group;
     }
   }
+}
+
+// Curves in two physical groups each, and the surface (shared_curves.geo): MSH 4.1 gives an
+// entity both tags, MSH 2.2 writes its elements once per group. Either way every curve group
+// has its nodes, and the cells are held once, with their first tag.
+TEST(ReadFixtures, AnEntityInTwoPhysicalGroupsIsInBoth) {
+  const Mesh m41 = read_mesh(data("gmsh_tri3_shared_41a.msh"));
+  const Mesh m22 = read_mesh(data("gmsh_tri3_shared_22a.msh"));
+  for (const Mesh* m : {&m41, &m22}) {
+    const auto nodes = [&](const char* name) { return m->group_nodes(*m->find_group(name)); };
+    const std::vector<std::int32_t> hole = nodes("hole wall"), outer = nodes("outer"), walls = nodes("walls");
+    std::vector<std::int32_t> bottom;  // the nodes of "outer" on y = 0
+    for (const std::int32_t v : outer)
+      if (m->x(1, v) == 0.0) bottom.push_back(v);
+    std::vector<std::int32_t> expected;
+    std::set_union(hole.begin(), hole.end(), bottom.begin(), bottom.end(), std::back_inserter(expected));
+    EXPECT_EQ(walls, expected);
+    EXPECT_GT(hole.size(), 0u);
+    EXPECT_GT(bottom.size(), 1u);
+    ASSERT_EQ(m->cells.size(), 1u);
+    EXPECT_EQ(m->cells[0].n_cells(), 121u);
+    for (const std::int32_t t : m->cells[0].physical) EXPECT_EQ(t, 10);
+  }
+  EXPECT_EQ(m41.n_cells(), m22.n_cells());
+  EXPECT_EQ(m41.cells[0].nodes, m22.cells[0].nodes);
 }
 
 TEST(ReadFixtures, GmshTetrahedraOrder1And3) {

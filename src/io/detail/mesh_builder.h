@@ -36,7 +36,8 @@ class TagIndex {
 
 /// Collects what a reader finds (nodes in 3D, elements of every dimension, groups) and
 /// turns it into a Mesh: dimension 3 if there is a 3D cell, else 2 (z must then be 0);
-/// elements of that dimension become cells, the others facets.
+/// elements of that dimension become cells, the others facets. A facet in several physical
+/// groups is held once per group (as Gmsh writes it in MSH 2.2); a cell keeps its first.
 class MeshBuilder {
  public:
   std::vector<std::int64_t> tags;
@@ -47,6 +48,14 @@ class MeshBuilder {
   /// Scalar nodal fields by name, one value per node of `tags` (the readers check that
   /// every node has one before finish()).
   std::map<std::string, std::vector<double>, std::less<>> node_fields;
+  /// An element's physical tags after its first (an MSH 4.1 entity in several groups).
+  struct ExtraPhysical {
+    ElementType type;
+    int order;
+    std::size_t cell;  ///< in the block of (type, order)
+    std::int32_t tag;
+  };
+  std::vector<ExtraPhysical> extra_physical;
 
   /// The block of (type, order), created on first use (blocks keep first-use order).
   CellBlock& block(ElementType type, int order);

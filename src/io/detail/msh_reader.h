@@ -21,8 +21,8 @@ struct MshState {
   TagIndex index;
   bool binary = false;
   bool have_nodes = false;
-  /// (entity dim, entity tag) → first physical tag of the entity (MSH 4.1 $Entities).
-  std::map<std::pair<int, int>, std::int32_t> entity_physical;
+  /// (entity dim, entity tag) → the physical tags of the entity (MSH 4.1 $Entities).
+  std::map<std::pair<int, int>, std::vector<std::int32_t>> entity_physical;
   /// Entities of $PartitionedEntities that lie inside a parent of higher dimension: the
   /// interfaces between partitions, whose elements are not facets of the model.
   std::set<std::pair<int, int>> partition_interfaces;
