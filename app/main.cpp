@@ -7,6 +7,7 @@
 #include <exception>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <dlfcn.h>
@@ -85,7 +86,22 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    report_error(e.what());
+    // "A subcommand is required" also answers a misspelt one: name it and the known ones.
+    std::string what = e.what();
+    if (app.get_subcommands().empty())
+      for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg.starts_with("-")) {
+          i += arg == "--threads" ? 1 : 0;  // the common option with a value
+          continue;
+        }
+        std::string known;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+          known += (known.empty() ? "" : ", ") + sub->get_name();
+        what = "unknown subcommand '" + arg + "' (expected one of: " + known + ")";
+        break;
+      }
+    report_error(what.c_str());
     std::fprintf(stderr, "Run 'meshmorph --help' for usage.\n");
     return kExitBadInput;
   }

@@ -152,7 +152,7 @@ std::vector<T> read_array(const VtuFile& f, const pugi::xml_node& node, ValueCou
       bytes = payload(f, node, *decoded, max_bytes);
     } else if (format == "appended") {
       if (f.appended == std::string_view::npos) f.fail(node, "format=\"appended\" but there is no AppendedData");
-      const std::size_t offset = node.attribute("offset").as_ullong(~0ull);
+      const std::size_t offset = f.appended_offset(node);
       if (offset > f.appended_end - f.appended) f.fail(node, "DataArray offset is outside the AppendedData");
       const auto next = std::upper_bound(f.appended_offsets.begin(), f.appended_offsets.end(), offset);
       const std::size_t end = next == f.appended_offsets.end() ? f.appended_end - f.appended : *next;

@@ -235,7 +235,7 @@ Mesh read_vtu(const std::filesystem::path& path) {
     if (enc != "raw" && enc != "base64") f.fail(ad, "AppendedData encoding must be raw or base64");
     f.appended_base64 = enc == "base64";
     for (const pugi::xpath_node& n : root.select_nodes("//DataArray[@format='appended']"))
-      f.appended_offsets.push_back(n.node().attribute("offset").as_ullong());
+      f.appended_offsets.push_back(f.appended_offset(n.node()));
     std::sort(f.appended_offsets.begin(), f.appended_offsets.end());
   }
   const pugi::xml_node grid = root.child("UnstructuredGrid");

@@ -19,7 +19,7 @@ while IFS='|' read -r args expected; do
   fi
 done <<CASES
 |A subcommand is required
-frobnicate $mesh|
+frobnicate $mesh|unknown subcommand 'frobnicate' (expected one of: quality, convert, check, morph
 convert $mesh|OUT is required
 convert $mesh $work/out/a.stl|unknown output format ".stl"
 convert $mesh $work/out/a.vtu --msh22|--msh22 needs a .msh output file

@@ -261,6 +261,31 @@ TEST(VtuEncodings, HeaderSizesAreCheckedBeforeAllocating) {
   fs::remove_all(dir);
 }
 
+// An appended array's offset is a byte count: "-5" or "8x" is an error naming its line, not
+// a number that some other array's bytes happen to fit.
+TEST(VtuEncodings, AnAppendedOffsetMustBeANonNegativeInteger) {
+  const std::string stored = header(72, false) + bytes_of<double>("0 0 0 1 0 0 0 1 0");
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_vtu_offset_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / "t.vtu";
+  for (const char* offset : {"-5", "8x", "", "+0"}) {
+    SCOPED_TRACE(offset);
+    std::string xml = triangle_vtu(stored, Mode::AppendedRaw, false, false);
+    xml.replace(xml.find("offset=\"0\""), 10, std::string("offset=\"") + offset + "\"");
+    std::ofstream(p, std::ios::binary | std::ios::trunc) << xml;
+    try {
+      read_vtu(p);
+      ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), p.string() + ": line 6: DataArray offset '" + offset +
+                                           "' is not a byte offset (a non-negative integer)");
+    }
+  }
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << triangle_vtu(stored, Mode::AppendedRaw, false, false);
+  EXPECT_EQ(read_vtu(p).n_nodes(), 3u);
+  fs::remove_all(dir);
+}
+
 TEST(VtuEncodings, Base64RoundTripsEveryLength) {
   for (std::size_t n = 0; n < 10; ++n) {
     std::string bytes;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <charconv>
 #include <cstddef>
 #include <filesystem>
 #include <limits>
@@ -27,6 +28,16 @@ struct VtuFile {
   [[noreturn]] void fail(const pugi::xml_node& node, const std::string& msg) const {
     throw_input_error(path, text, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, node.offset_debug())),
                               false, msg);
+  }
+  /// The `offset` attribute of an appended DataArray: decimal digits only (pugixml's
+  /// as_ullong would take "-5" or "12abc" as some number).
+  std::size_t appended_offset(const pugi::xml_node& node) const {
+    const std::string_view t = node.attribute("offset").as_string();
+    std::size_t v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size())
+      fail(node, "DataArray offset '" + std::string(t) + "' is not a byte offset (a non-negative integer)");
+    return v;
   }
 };
 
