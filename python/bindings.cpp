@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -18,12 +19,14 @@
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/morph_case.h"
 #include "meshmorph/app/report.h"
+#include "meshmorph/app/untangle_case.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/log.h"
 #include "meshmorph/methods/morph.h"
+#include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/quality_report.h"
 
 namespace py = pybind11;
@@ -83,70 +86,131 @@ py::dict quality_dict(const QualityReport& q) {
   return d;
 }
 
-/// A morph case on a mesh in memory, solved as often as the caller asks: λ, μ and the weights
-/// carry from one solve to the next as in a time series (Morpher), the mesh's topology, DOF
-/// numbering and symbolic factorization are made once.
-class MorphSession {
+/// A method's case on a mesh in memory, solved as often as the caller asks (the Python
+/// Morpher and Untangler): the boundary is resolved once, and each solve starts where the last
+/// ended, as a step of a time series does.
+class Session {
  public:
-  MorphSession(const Mesh& mesh, const std::string& case_json, int threads)
-      : case_(parse_case_file(case_json, "Morpher", false)), input_(mesh) {
-    check_case_against_mesh(case_, input_);
-    settings_ = read_morph_settings(case_, threads);
-    if (settings_.method != "morph")
-      throw InputError("Morpher: options.method: the Morpher runs \"morph\"; the baselines \"" + settings_.method +
-                       "\" run from the command line (meshmorph morph)");
-    if (case_.order && *case_.order > input_.order()) input_ = elevate_order(input_, *case_.order);
-    if (const std::size_t bad = count_invalid_cells(input_); bad > 0)
-      throw InputError("Morpher: the mesh has " + std::to_string(bad) +
-                       " inverted elements: morph needs a valid input mesh (untangle recovers one)");
-    topology_ = build_topology(input_);
-    motion_ = std::make_unique<BoundaryMotion>(case_, input_, topology_);
-    morpher_ = std::make_unique<Morpher>(input_, topology_, motion_->targets(), settings_.morph);
-    x_ = input_.x;
-  }
-
+  virtual ~Session() = default;
   const Mesh& input() const { return input_; }
   const Eigen::MatrixXd& points() const { return x_; }
+
+  /// The motion at fraction t of its path (d × n).
   Eigen::MatrixXd targets_at(double t) const {
-    if (!(t >= 0.0 && t <= 1.0)) throw InputError("Morpher.solve: t must be in [0, 1], found " + std::to_string(t));
-    return motion_->at(t);
+    if (!(t >= 0.0 && t <= 1.0)) throw InputError(name_ + ".solve: t must be in [0, 1], found " + std::to_string(t));
+    return motion_ ? motion_->at(t) : input_.x;
+  }
+  Eigen::MatrixXd targets_from(const Array& a) const {
+    return matrix_of(a, input_.dim, input_.n_nodes(), name_ + ".solve: targets");
   }
 
   /// One solve towards `target` (d × n); the report of DESIGN §3.3 as JSON text.
   std::string solve(const Eigen::MatrixXd& target) {
     const auto start = std::chrono::steady_clock::now();
     Report report;
-    report.method = "morph";
-    MorphResult r;
+    nlohmann::ordered_json extra = nlohmann::ordered_json::object();
     {
       py::gil_scoped_release release;
-      r = morpher_->solve(target, x_, ++step_);
+      run(target, ++step_, report, extra);
     }
-    report.iterations = IterationCounts{r.outer, r.nonlinear, r.newton, r.linear};
-    report.history = morph_history(r);
-    report.converged = r.converged;
-    report.message = r.message;
     Mesh moved = input_;
     moved.x = x_;
-    detail::fill_result(report, moved, &input_, motion_->targets());
-    if (report.converged && report.message.empty()) report.message = "boundary reached, mesh valid";
+    detail::fill_result(report, moved, input_inverted_ == 0 ? &input_ : nullptr, targets());
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.meshmorph_version = meshmorph_version();
     report.peak_memory_mb = peak_memory_mb();
     nlohmann::ordered_json j = report_to_json(report);
-    j["guarded_cells"] = r.guarded_cells;
+    for (auto& [key, value] : extra.items()) j[key] = value;
     return j.dump();
   }
 
- private:
+ protected:
+  /// Parses the case (`name` stands for its file in messages), checks it against the mesh and
+  /// elevates the mesh to the case's order.
+  Session(const Mesh& mesh, const std::string& case_json, std::string name)
+      : name_(std::move(name)), case_(parse_case_file(case_json, name_, false)), input_(mesh) {
+    check_case_against_mesh(case_, input_);
+    if (case_.order && *case_.order > input_.order()) input_ = elevate_order(input_, *case_.order);
+    input_inverted_ = count_invalid_cells(input_);
+  }
+  /// Resolves the boundary entries on the mesh; without any, every boundary node is fixed.
+  void resolve_boundary() {
+    topology_ = build_topology(input_);
+    if (!case_.boundary.empty()) motion_ = std::make_unique<BoundaryMotion>(case_, input_, topology_);
+    else bare_ = detail::fixed_boundary(input_, topology_);
+    x_ = input_.x;
+  }
+  const BoundaryTargets& targets() const { return motion_ ? motion_->targets() : bare_; }
+  /// The method's solve from x_ towards `target`, filling the report's method fields and the
+  /// members that follow DESIGN §3.3's (`extra`); runs without the GIL.
+  virtual void run(const Eigen::MatrixXd& target, int step, Report& report, nlohmann::ordered_json& extra) = 0;
+
+  std::string name_;
   CaseFile case_;
   Mesh input_;
-  MorphSettings settings_;
+  std::size_t input_inverted_ = 0;
   Topology topology_;
   std::unique_ptr<BoundaryMotion> motion_;  // holds pointers to input_ and topology_
-  std::unique_ptr<Morpher> morpher_;
+  BoundaryTargets bare_;
   Eigen::MatrixXd x_;
   int step_ = 0;
+};
+
+/// `meshmorph morph` on a mesh in memory: λ, μ and the weights carry from one solve to the
+/// next (Morpher), the mesh's topology, DOF numbering and symbolic factorization are made once.
+class MorphSession final : public Session {
+ public:
+  MorphSession(const Mesh& mesh, const std::string& case_json, int threads) : Session(mesh, case_json, "Morpher") {
+    const MorphSettings settings = read_morph_settings(case_, threads);
+    if (settings.method != "morph")
+      throw InputError("Morpher: options.method: the Morpher runs \"morph\"; the baselines \"" + settings.method +
+                       "\" run from the command line (meshmorph morph)");
+    if (input_inverted_ > 0)
+      throw InputError("Morpher: the mesh has " + std::to_string(input_inverted_) +
+                       " inverted elements: morph needs a valid input mesh (untangle recovers one)");
+    resolve_boundary();
+    morpher_ = std::make_unique<Morpher>(input_, topology_, targets(), settings.morph);
+  }
+
+ private:
+  void run(const Eigen::MatrixXd& target, int step, Report& report, nlohmann::ordered_json& extra) override {
+    const MorphResult r = morpher_->solve(target, x_, step);
+    report.method = "morph";
+    report.iterations = IterationCounts{r.outer, r.nonlinear, r.newton, r.linear};
+    report.history = morph_history(r);
+    report.converged = r.converged;
+    report.message = r.converged && r.message.empty() ? "boundary reached, mesh valid" : r.message;
+    extra["guarded_cells"] = r.guarded_cells;
+  }
+  std::unique_ptr<Morpher> morpher_;
+};
+
+/// `meshmorph untangle` on a mesh in memory (paper 001): tangled input welcome; each solve
+/// starts from the last result, moved by the differential predictor when it is on.
+class UntangleSession final : public Session {
+ public:
+  UntangleSession(const Mesh& mesh, const std::string& case_json, int threads) : Session(mesh, case_json, "Untangler") {
+    std::optional<UntangleReference> reference;
+    options_ = read_untangle_options(case_.options, name_, threads, reference);
+    resolve_untangle_reference(options_, reference, input_inverted_, name_);
+    resolve_boundary();
+    untangler_ = std::make_unique<Untangler>(input_, topology_, targets(), options_);
+  }
+
+ private:
+  void run(const Eigen::MatrixXd& target, int step, Report& report, nlohmann::ordered_json& extra) override {
+    const UntangleResult r = untangler_->solve(target, x_, step);
+    report.method = "untangle";
+    report.iterations = IterationCounts{r.delta_updates, 1, r.newton, r.linear};
+    report.history = untangle_history(r);
+    report.converged = r.converged;
+    report.message = r.message;
+    extra["initial_inverted_elements"] = r.initial_inverted;
+    extra["min_edge_quality"] = r.min_quality;
+    extra["reference"] = options_.reference == UntangleReference::Input ? "input" : "regular";
+  }
+  UntangleOptions options_;
+  std::unique_ptr<Untangler> untangler_;
 };
 
 }  // namespace
@@ -244,13 +308,13 @@ PYBIND11_MODULE(_meshmorph, m) {
   }, py::arg("level"), "Where the library's messages go: \"quiet\" (none, the default), \"info\", \"progress\" "
                         "(a line per iteration) or \"detail\" (Newton steps), on stderr.");
 
-  py::class_<MorphSession>(m, "MorphSession")
-      .def(py::init<const Mesh&, const std::string&, int>(), py::arg("mesh"), py::arg("case_json"), py::arg("threads"))
-      .def_property_readonly("mesh", &MorphSession::input)
-      .def_property_readonly("points", [](const MorphSession& s) { return rows_of(s.points()); })
-      .def("solve_at", [](MorphSession& s, double t) { return s.solve(s.targets_at(t)); })
-      .def("solve_to", [](MorphSession& s, const Array& targets) {
-        const Mesh& mesh = s.input();
-        return s.solve(matrix_of(targets, mesh.dim, mesh.n_nodes(), "Morpher.solve: targets"));
-      });
+  py::class_<Session>(m, "Session")
+      .def_property_readonly("mesh", &Session::input)
+      .def_property_readonly("points", [](const Session& s) { return rows_of(s.points()); })
+      .def("solve_at", [](Session& s, double t) { return s.solve(s.targets_at(t)); }, py::arg("t"))
+      .def("solve_to", [](Session& s, const Array& targets) { return s.solve(s.targets_from(targets)); }, py::arg("targets"));
+  py::class_<MorphSession, Session>(m, "MorphSession")
+      .def(py::init<const Mesh&, const std::string&, int>(), py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
+  py::class_<UntangleSession, Session>(m, "UntangleSession")
+      .def(py::init<const Mesh&, const std::string&, int>(), py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 }

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""meshmorph in Python: read and write meshes, measure their quality, and morph them.
+"""meshmorph in Python: read and write meshes, measure their quality, morph and untangle them.
 
     import meshmorph
     mesh = meshmorph.read_mesh("annulus.msh")
@@ -17,9 +17,10 @@ import json as _json
 
 from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality, read_mesh, set_log_level
 from ._meshmorph import MorphSession as _MorphSession
+from ._meshmorph import UntangleSession as _UntangleSession
 
-__all__ = ["InputError", "IoError", "Mesh", "Morpher", "elevate", "quality", "read_mesh", "set_log_level",
-           "__version__"]
+__all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "elevate", "quality", "read_mesh",
+           "set_log_level", "__version__"]
 
 
 def _plain(value):
@@ -29,31 +30,22 @@ def _plain(value):
     raise TypeError(f"{type(value).__name__} is not a JSON value")
 
 
-class Morpher:
-    """Morphs `mesh` by the augmented Lagrangian of paper 000 (`meshmorph morph`).
+class _Method:
+    """What Morpher and Untangler share: a case on a mesh in memory, solved again and again."""
 
-    `boundary` is the "boundary" list of a case file (docs/case-file.md): each entry a group
-    and its motion (fixed, translate, rotate, scale, project, displace, slide). `options`
-    are the case file's morph options (docs/morph.md), `order` elevates the mesh first as the
-    case file's "order" does. Relative paths (displacement tables, level-set files) are read
-    from the current folder. The mesh is copied; it must be valid.
-
-    Each solve() starts from where the last one ended, with the multipliers, penalty and
-    weights it left (paper 000 §5.5): a time series is solve(t) for increasing t, and a
-    shape-optimization loop is solve(targets=...) with new boundary positions each time.
-    """
-
-    def __init__(self, mesh, boundary, options=None, order=None, threads=0):
-        case = {"boundary": boundary}
+    def __init__(self, session, mesh, boundary, options, order, threads):
+        case = {}
+        if boundary is not None:
+            case["boundary"] = boundary
         if options is not None:
             case["options"] = options
         if order is not None:
             case["order"] = order
-        self._session = _MorphSession(mesh, _json.dumps(case, default=_plain), threads)
+        self._session = session(mesh, _json.dumps(case, default=_plain), threads)
 
     @property
     def mesh(self):
-        """The input mesh (elevated to `order`): the distortion is measured against it."""
+        """The input mesh (elevated to `order`): the reference of the method's quality."""
         return self._session.mesh
 
     @property
@@ -67,9 +59,43 @@ class Morpher:
         nodes of the moving groups (its other rows are not used, but must be finite).
 
         Returns the report of DESIGN §3.3 as a dict, with "points" (n_nodes, dim) added. When
-        "converged" is False the points are still a valid mesh, the last valid iterate.
+        "converged" is False, "message" says why.
         """
         text = self._session.solve_at(t) if targets is None else self._session.solve_to(targets)
         report = _json.loads(text)
         report["points"] = self._session.points
         return report
+
+
+class Morpher(_Method):
+    """Morphs `mesh` by the augmented Lagrangian of paper 000 (`meshmorph morph`).
+
+    `boundary` is the "boundary" list of a case file (docs/case-file.md): each entry a group
+    and its motion (fixed, translate, rotate, scale, project, displace, slide). `options`
+    are the case file's morph options (docs/morph.md), `order` elevates the mesh first as the
+    case file's "order" does. Relative paths (displacement tables, level-set files) are read
+    from the current folder. The mesh is copied; it must be valid.
+
+    Each solve() starts from where the last one ended, with the multipliers, penalty and
+    weights it left (paper 000 §5.5): a time series is solve(t) for increasing t, and a
+    shape-optimization loop is solve(targets=...) with new boundary positions each time. A
+    solve that misses its goal still leaves a valid mesh (the last valid iterate).
+    """
+
+    def __init__(self, mesh, boundary, options=None, order=None, threads=0):
+        super().__init__(_MorphSession, mesh, boundary, options, order, threads)
+
+
+class Untangler(_Method):
+    """Untangles and smooths `mesh` (paper 001, `meshmorph untangle`); the mesh may be tangled.
+
+    `boundary` as for Morpher, or None: every boundary node stays where it is (`meshmorph
+    untangle MESH`). `options` are the case file's untangle options (docs/untangle.md). The
+    reference is the input mesh where it is valid, the regular cell where it is not.
+
+    Each solve() starts from the last result, moved by the differential predictor (eq. 22–23).
+    When "converged" is False the points may still be tangled: the report says how many cells.
+    """
+
+    def __init__(self, mesh, boundary=None, options=None, order=None, threads=0):
+        super().__init__(_UntangleSession, mesh, boundary, options, order, threads)

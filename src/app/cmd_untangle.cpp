@@ -5,16 +5,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "app/detail/method_output.h"
-#include "app/detail/solver_option.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
-#include "meshmorph/app/option_reader.h"
 #include "meshmorph/app/report.h"
+#include "meshmorph/app/untangle_case.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 #include "meshmorph/fem/trace.h"
@@ -31,36 +31,6 @@ struct UntangleArgs {
   std::string report;
 };
 
-// The options of docs/untangle.md; `reference` stays unset when the case does not name it
-// (input when the input mesh is valid, else regular).
-UntangleOptions read_options(const nlohmann::json& options, const std::string& file, int threads,
-                             std::optional<UntangleReference>& reference) {
-  UntangleOptions o;
-  OptionReader r(options, file);
-  r.read("n", o.n, -16.0, -1e-3);
-  r.read("h_min", o.h_min, 1e-3, 1.0 - 1e-3);
-  r.read("eps_delta", o.eps_delta, 1e-300, 1.0);
-  r.read("alpha", o.alpha, 0.0, 1.0);
-  r.read("beta", o.beta, 0.0, 1.0 - 1e-12);
-  r.read("eps_q", o.eps_q, 0.0, 1.0);
-  r.read("gamma_untangle", o.gamma_untangle, 0.0, 1.0);
-  r.read("gamma_smooth", o.gamma_smooth, 0.0, 1.0);
-  if (r.has("reference")) {
-    std::string ref;
-    r.read("reference", ref, {"input", "regular"});
-    reference = ref == "input" ? UntangleReference::Input : UntangleReference::Regular;
-  }
-  std::string rule = "continuation";
-  r.read("delta_rule", rule, {"continuation", "paper"});
-  o.delta_rule = rule == "paper" ? DeltaRule::Paper : DeltaRule::Continuation;
-  r.read("predictor", o.predictor);
-  r.read("max_newton", o.max_newton, 1, 100000);
-  o.solver = detail::read_solver(r);
-  r.finish();
-  o.threads = threads;
-  return o;
-}
-
 Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const bool is_case = std::filesystem::path(a.input).extension() == ".json";
@@ -74,13 +44,10 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
     input = read_mesh(a.input);
   }
   std::optional<UntangleReference> reference;
-  UntangleOptions options = read_options(c ? c->options : nlohmann::json::object(), a.input, threads, reference);
+  UntangleOptions options = read_untangle_options(c ? c->options : nlohmann::json::object(), a.input, threads, reference);
   if (c && c->order && *c->order > input.order()) input = elevate_order(input, *c->order);
   const std::size_t input_inverted = count_invalid_cells(input);
-  if (reference == UntangleReference::Input && input_inverted > 0)
-    throw InputError(a.input + ": options.reference: \"input\" needs a valid input mesh, and " +
-                     std::to_string(input_inverted) + " cells of it are inverted (\"regular\" untangles it)");
-  options.reference = reference.value_or(input_inverted > 0 ? UntangleReference::Regular : UntangleReference::Input);
+  resolve_untangle_reference(options, reference, input_inverted, a.input);
 
   std::optional<std::filesystem::path> output, report_path;
   if (!a.output.empty()) output = a.output;
@@ -124,9 +91,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
     counts.newton += r.newton;
     counts.linear += r.linear;
     min_edge_quality = r.min_quality;
-    for (const UntangleIteration& h : r.history)
-      report.history.push_back({{"step", h.step}, {"newton", h.newton}, {"delta", h.delta}, {"alpha", h.alpha},
-                                {"min_quality", h.min_quality}, {"inverted", static_cast<double>(h.inverted)}});
+    for (HistoryRow& row : untangle_history(r)) report.history.push_back(std::move(row));
     report.message = (steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) + r.message;
     if (!r.converged) {
       report.converged = false;
