@@ -32,16 +32,26 @@ void begin_binary(MshState& s) {
 
 }  // namespace
 
-void read_msh41_entities(MshState& s) {
-  begin_binary(s);
+namespace {
+
+// The four counts and the records of $Entities, or of $PartitionedEntities, whose records
+// hold their parent entity and partitions after the tag.
+void read_entity_records(MshState& s, bool partitioned) {
   std::uint64_t n[4];
   for (auto& v : n) {
     v = count(s, "number of entities");
-    s.check_count(v, s.binary ? 4 : 2, here(s));
+    s.check_count(v, s.binary ? (partitioned ? 28 : 4) : (partitioned ? 8 : 2), here(s));
   }
   for (int dim = 0; dim < 4; ++dim) {
     for (std::uint64_t e = 0; e < n[dim]; ++e) {
       const int tag = small_int(s, "entity tag");
+      if (partitioned) {
+        if (small_int(s, "parent entity dimension") != dim) s.partition_interfaces.insert({dim, tag});
+        small_int(s, "parent entity tag");
+        const std::uint64_t n_parts = count(s, "number of partitions of the entity");
+        s.check_count(n_parts, s.binary ? 4 : 2, here(s));
+        for (std::uint64_t k = 0; k < n_parts; ++k) small_int(s, "partition tag");
+      }
       for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
       const std::uint64_t n_phys = count(s, "number of physical tags");
       s.check_count(n_phys, s.binary ? 4 : 2, here(s));
@@ -55,6 +65,13 @@ void read_msh41_entities(MshState& s) {
       }
     }
   }
+}
+
+}  // namespace
+
+void read_msh41_entities(MshState& s) {
+  begin_binary(s);
+  read_entity_records(s, false);
 }
 
 // A partitioned file (gmsh -part N) puts its elements on the entities of this section, each a
@@ -72,32 +89,7 @@ void read_msh41_partitioned_entities(MshState& s) {
     small_int(s, "ghost entity tag");
     small_int(s, "ghost entity partition");
   }
-  std::uint64_t n[4];
-  for (auto& v : n) {
-    v = count(s, "number of partitioned entities");
-    s.check_count(v, s.binary ? 28 : 8, here(s));
-  }
-  for (int dim = 0; dim < 4; ++dim) {
-    for (std::uint64_t e = 0; e < n[dim]; ++e) {
-      const int tag = small_int(s, "partitioned entity tag");
-      if (small_int(s, "parent entity dimension") != dim) s.partition_interfaces.insert({dim, tag});
-      small_int(s, "parent entity tag");
-      const std::uint64_t n_parts = count(s, "number of partitions of the entity");
-      s.check_count(n_parts, s.binary ? 4 : 2, here(s));
-      for (std::uint64_t k = 0; k < n_parts; ++k) small_int(s, "partition tag");
-      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) real(s, "entity bounding box");
-      const std::uint64_t n_phys = count(s, "number of physical tags");
-      s.check_count(n_phys, s.binary ? 4 : 2, here(s));
-      std::vector<std::int32_t>& physical = s.entity_physical[{dim, tag}];
-      physical.clear();
-      for (std::uint64_t k = 0; k < n_phys; ++k) physical.push_back(small_int(s, "physical tag"));
-      if (dim > 0) {
-        const std::uint64_t n_bound = count(s, "number of bounding entities");
-        s.check_count(n_bound, s.binary ? 4 : 2, here(s));
-        for (std::uint64_t k = 0; k < n_bound; ++k) small_int(s, "bounding entity tag");
-      }
-    }
-  }
+  read_entity_records(s, true);
 }
 
 // The header shared by $Nodes and $Elements: numBlocks numItems minTag maxTag, the counts
