@@ -2,6 +2,7 @@
 // meshmorph._meshmorph: the C++ side of the Python module (python/meshmorph/__init__.py wraps
 // it; docs/python.md). Arrays cross as copies, n × d (a row per node); the library runs
 // without the GIL.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -68,6 +70,96 @@ py::array_t<T> array_of(const std::vector<T>& v) {
   return a;
 }
 
+// A list of cell blocks as `Mesh.cell_blocks` gives them: dicts of "type", "order", "nodes"
+// (n_cells × nodes per cell, 0-based, Gmsh's order) and, optionally, "physical" (a tag per
+// cell). `what` names the list in messages; `dims` are the topological dimensions allowed.
+std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int min_dim, int max_dim,
+                                 const std::string& what) {
+  std::vector<CellBlock> blocks;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string where = what + "[" + std::to_string(i) + "]";
+    const py::dict d = list[i].cast<py::dict>();
+    for (const auto& [key, value] : d) {
+      const std::string k = key.cast<std::string>();
+      if (k != "type" && k != "order" && k != "nodes" && k != "physical")
+        throw InputError(where + "." + k + ": unknown key (expected one of: type, order, nodes, physical)");
+    }
+    if (!d.contains("type") || !d.contains("nodes")) throw InputError(where + ": needs \"type\" and \"nodes\"");
+    CellBlock b;
+    const std::string type = d["type"].cast<std::string>();
+    bool known = false;
+    for (ElementType t : {ElementType::Point, ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral,
+                          ElementType::Tetrahedron, ElementType::Hexahedron})
+      if (name_of(t) == type) b.type = t, known = true;
+    if (!known || topological_dim(b.type) < min_dim || topological_dim(b.type) > max_dim)
+      throw InputError(where + ".type: \"" + type + "\" is not a " + (min_dim == max_dim ? "cell" : "facet") +
+                       " type of this mesh");
+    b.order = d.contains("order") ? d["order"].cast<int>() : 1;
+    if (b.order < 1 || b.order > std::max(1, max_order_of(b.type)))
+      throw InputError(where + ".order: " + std::to_string(b.order) + " is not an order of " + type + " cells");
+    const auto nodes = d["nodes"].cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
+    const int k = b.n_nodes_per_cell();
+    if (nodes.ndim() != 2 || nodes.shape(1) != k)
+      throw InputError(where + ".nodes: expected an array of " + std::to_string(k) + " columns (" + type + " of order " +
+                       std::to_string(b.order) + ")");
+    const auto n_cells = static_cast<std::size_t>(nodes.shape(0));
+    b.nodes.resize(n_cells * static_cast<std::size_t>(k));
+    for (std::size_t j = 0; j < b.nodes.size(); ++j) {
+      const std::int64_t v = nodes.data()[j];
+      if (v < 0 || v >= static_cast<std::int64_t>(n_nodes))
+        throw InputError(where + ".nodes: node " + std::to_string(v) + " of cell " + std::to_string(j / k) +
+                         " is not in [0, " + std::to_string(n_nodes) + ")");
+      b.nodes[j] = static_cast<std::int32_t>(v);
+    }
+    b.physical.assign(n_cells, 0);
+    b.entity.assign(n_cells, 0);
+    if (d.contains("physical")) {
+      const auto tags = d["physical"].cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
+      if (tags.ndim() != 1 || static_cast<std::size_t>(tags.shape(0)) != n_cells)
+        throw InputError(where + ".physical: expected one tag per cell (" + std::to_string(n_cells) + ")");
+      for (std::size_t c = 0; c < n_cells; ++c) b.physical[c] = static_cast<std::int32_t>(tags.data()[c]);
+    }
+    blocks.push_back(std::move(b));
+  }
+  return blocks;
+}
+
+// Mesh.cell_blocks and Mesh.facet_blocks.
+py::list block_dicts(const std::vector<CellBlock>& blocks) {
+  py::list list;
+  for (const CellBlock& b : blocks) {
+    py::array_t<std::int32_t> nodes({static_cast<py::ssize_t>(b.n_cells()), static_cast<py::ssize_t>(b.n_nodes_per_cell())});
+    std::copy(b.nodes.begin(), b.nodes.end(), nodes.mutable_data());
+    py::dict d;
+    d["type"] = std::string(name_of(b.type));
+    d["order"] = b.order;
+    d["nodes"] = nodes;
+    d["physical"] = array_of(b.physical);
+    list.append(d);
+  }
+  return list;
+}
+
+/// A mesh from arrays (Mesh(points, cells, facets, groups)): the blocks as Mesh.cell_blocks
+/// and Mesh.facet_blocks give them, the groups as Mesh.groups.
+Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets, const py::list& groups) {
+  if (points.ndim() != 2 || (points.shape(1) != 2 && points.shape(1) != 3))
+    throw InputError("Mesh: points: expected an array of shape (n_nodes, 2) or (n_nodes, 3)");
+  Mesh m;
+  m.dim = static_cast<int>(points.shape(1));
+  m.x = matrix_of(points, m.dim, static_cast<std::size_t>(points.shape(0)), "Mesh: points");
+  m.node_tags.resize(m.n_nodes());
+  for (std::size_t i = 0; i < m.n_nodes(); ++i) m.node_tags[i] = static_cast<std::int64_t>(i) + 1;
+  m.cells = blocks_of(cells, m.n_nodes(), m.dim, m.dim, "Mesh: cells");
+  if (m.cells.empty()) throw InputError("Mesh: cells: no cell block");
+  m.facets = blocks_of(facets, m.n_nodes(), 0, m.dim - 1, "Mesh: facets");
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const py::dict g = groups[i].cast<py::dict>();
+    m.groups.push_back({g["dim"].cast<int>(), g["tag"].cast<std::int32_t>(), g.contains("name") ? g["name"].cast<std::string>() : ""});
+  }
+  return m;
+}
+
 py::dict quality_dict(const QualityReport& q) {
   py::dict d;
   d["cells"] = q.n_cells;
@@ -115,7 +207,11 @@ class Session {
     }
     Mesh moved = input_;
     moved.x = x_;
-    detail::fill_result(report, moved, input_inverted_ == 0 ? &input_ : nullptr, targets());
+    // The boundary error against this solve's targets, not the case's motion at its end.
+    BoundaryTargets bc = targets();
+    for (std::size_t i = 0; i < bc.n_nodes(); ++i)
+      if (bc.role[i] == NodeRole::Prescribed) bc.target.col(static_cast<Eigen::Index>(i)) = target.col(static_cast<Eigen::Index>(i));
+    detail::fill_result(report, moved, input_inverted_ == 0 ? &input_ : nullptr, bc);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.meshmorph_version = meshmorph_version();
     report.peak_memory_mb = peak_memory_mb();
@@ -224,6 +320,10 @@ PYBIND11_MODULE(_meshmorph, m) {
   m.attr("__version__") = meshmorph_version();
 
   py::class_<Mesh>(m, "Mesh")
+      .def(py::init(&mesh_of), py::arg("points"), py::arg("cells"), py::arg("facets") = py::list(),
+           py::arg("groups") = py::list(),
+           "A mesh from arrays: points (n_nodes, dim), cell and facet blocks as Mesh.cell_blocks gives them "
+           "(type, order, nodes in Gmsh's order, physical tags), groups as Mesh.groups.")
       .def_readonly("dim", &Mesh::dim)
       .def_property_readonly("order", &Mesh::order)
       .def_property_readonly("n_nodes", &Mesh::n_nodes)
@@ -232,21 +332,8 @@ PYBIND11_MODULE(_meshmorph, m) {
           "points", [](const Mesh& mesh) { return rows_of(mesh.x); },
           [](Mesh& mesh, const Array& a) { mesh.x = matrix_of(a, mesh.dim, mesh.n_nodes(), "Mesh.points"); })
       .def_property_readonly("node_tags", [](const Mesh& mesh) { return array_of(mesh.node_tags); })
-      .def_property_readonly("cell_blocks",
-                             [](const Mesh& mesh) {
-                               py::list blocks;
-                               for (const CellBlock& b : mesh.cells) {
-                                 py::array_t<std::int32_t> nodes({static_cast<py::ssize_t>(b.n_cells()),
-                                                                  static_cast<py::ssize_t>(b.n_nodes_per_cell())});
-                                 std::copy(b.nodes.begin(), b.nodes.end(), nodes.mutable_data());
-                                 py::dict d;
-                                 d["type"] = std::string(name_of(b.type));
-                                 d["order"] = b.order;
-                                 d["nodes"] = nodes;
-                                 blocks.append(d);
-                               }
-                               return blocks;
-                             })
+      .def_property_readonly("cell_blocks", [](const Mesh& mesh) { return block_dicts(mesh.cells); })
+      .def_property_readonly("facet_blocks", [](const Mesh& mesh) { return block_dicts(mesh.facets); })
       .def_property_readonly("groups",
                              [](const Mesh& mesh) {
                                py::list groups;

@@ -93,6 +93,57 @@ class MeshTest(unittest.TestCase):
             meshmorph.elevate(self.mesh, 5)
 
 
+class MeshFromArraysTest(unittest.TestCase):
+    def test_the_blocks_of_a_mesh_make_the_same_mesh(self):
+        m = meshmorph.read_mesh(str(ANNULUS))
+        again = meshmorph.Mesh(m.points, m.cell_blocks, m.facet_blocks, m.groups)
+        self.assertEqual((again.dim, again.n_nodes, again.n_cells), (m.dim, m.n_nodes, m.n_cells))
+        self.assertEqual(again.groups, m.groups)
+        for group in ("inner", "outer", "domain"):
+            self.assertTrue(np.array_equal(again.group_nodes(group), m.group_nodes(group)))
+        self.assertEqual(meshmorph.quality(again)["min_shape_quality"], meshmorph.quality(m)["min_shape_quality"])
+        turn = [{"group": "inner", "rotate": {"center": [0, 0], "degrees": 30}}, {"group": "outer", "fixed": True}]
+        a = meshmorph.Morpher(m, turn, threads=1).solve()
+        b = meshmorph.Morpher(again, turn, threads=1).solve()
+        self.assertTrue(np.array_equal(a["points"], b["points"]))
+
+    def test_a_mesh_by_hand(self):
+        # The unit square as two triangles, its bottom edge the group "bottom".
+        square = meshmorph.Mesh(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+                                [{"type": "triangle", "nodes": [[0, 1, 2], [0, 2, 3]]}],
+                                [{"type": "line", "nodes": [[0, 1]], "physical": [7]}],
+                                [{"name": "bottom", "dim": 1, "tag": 7}])
+        self.assertEqual((square.dim, square.order, square.n_cells), (2, 1, 2))
+        self.assertTrue(np.array_equal(square.group_nodes("bottom"), [0, 1]))
+        self.assertTrue(meshmorph.quality(square)["valid"])
+        with tempfile.TemporaryDirectory() as tmp:
+            square.write(tmp + "/square.msh")
+            back = meshmorph.read_mesh(tmp + "/square.msh")
+        self.assertTrue(np.array_equal(back.points, square.points))
+        self.assertTrue(np.array_equal(back.group_nodes("bottom"), [0, 1]))
+
+    def test_bad_blocks(self):
+        points = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+        cases = [
+            ([{"type": "triangle", "nodes": [[0, 1, 2], [0, 2, 7]]}], [], r"Mesh: cells\[0\]\.nodes: node 7 of cell 1 is not in \[0, 4\)"),
+            ([{"type": "triangle", "nodes": [[0, 1, 2, 3]]}], [], r"cells\[0\]\.nodes: expected an array of 3 columns"),
+            ([{"type": "pyramid", "nodes": [[0, 1, 2]]}], [], r'cells\[0\]\.type: "pyramid" is not a cell type'),
+            ([{"type": "tetrahedron", "nodes": [[0, 1, 2, 3]]}], [], r'cells\[0\]\.type: "tetrahedron" is not a cell type'),
+            ([{"type": "triangle", "order": 5, "nodes": [[0, 1, 2]]}], [], r"cells\[0\]\.order: 5 is not an order"),
+            ([{"type": "triangle", "nodes": [[0, 1, 2]], "colour": 1}], [], r"cells\[0\]\.colour: unknown key"),
+            ([{"type": "triangle", "nodes": [[0, 1, 2]], "physical": [1, 2]}], [], r"physical: expected one tag per cell"),
+            ([{"type": "triangle", "nodes": [[0, 1, 2]]}], [{"type": "triangle", "nodes": [[0, 1, 2]]}],
+             r'facets\[0\]\.type: "triangle" is not a facet type'),
+            ([], [], "Mesh: cells: no cell block"),
+        ]
+        for cells, facets, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaisesRegex(meshmorph.InputError, message):
+                    meshmorph.Mesh(points, cells, facets)
+        with self.assertRaisesRegex(meshmorph.InputError, r"Mesh: points: row 2 is not finite"):
+            meshmorph.Mesh(np.array([[0.0, 0], [1, 0], [np.nan, 1]]), [{"type": "triangle", "nodes": [[0, 1, 2]]}])
+
+
 class MeshErrorTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()

@@ -75,6 +75,7 @@ class MorpherTest(unittest.TestCase):
         x = self.annulus.points
         for r, degrees in ((half, 30.0), (full, 60.0)):
             np.testing.assert_allclose(r["points"][inner], x[inner] @ rotation(degrees).T, atol=1e-8)
+            self.assertLess(r["boundary_error_max"], 1e-8)  # against this solve's targets
         self.assertTrue(np.array_equal(m.points, full["points"]))
 
     def test_explicit_targets_move_the_moving_groups_only(self):
@@ -85,6 +86,7 @@ class MorpherTest(unittest.TestCase):
         targets[inner] = x[inner] @ rotation(60.0).T
         r = meshmorph.Morpher(self.annulus, ROTATE).solve(targets=targets)
         self.assertTrue(r["converged"], r["message"])
+        self.assertLess(r["boundary_error_max"], 1e-8)
         ref = meshmorph.Morpher(self.annulus, ROTATE).solve()
         np.testing.assert_allclose(r["points"], ref["points"], atol=1e-8)
         outer = self.annulus.group_nodes("outer")
