@@ -19,6 +19,7 @@
 #include "app/detail/method_output.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
+#include "meshmorph/app/fit_case.h"
 #include "meshmorph/app/morph_case.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/app/untangle_case.h"
@@ -27,6 +28,7 @@
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/log.h"
+#include "meshmorph/methods/fit.h"
 #include "meshmorph/methods/morph.h"
 #include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/quality_report.h"
@@ -309,6 +311,31 @@ class UntangleSession final : public Session {
   std::unique_ptr<Untangler> untangler_;
 };
 
+/// `meshmorph fit` on a mesh in memory (paper 003): the fitted mesh, which the case may have
+/// trimmed, split and elevated, and its report as JSON text.
+std::pair<std::string, Mesh> fit_mesh(const Mesh& mesh, const std::string& case_json, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const CaseFile c = parse_case_file(case_json, "fit", false);
+  check_case_against_mesh(c, mesh);
+  const FitSettings settings = read_fit_settings(c, threads);
+  if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
+    throw InputError("fit: the mesh has " + std::to_string(bad) + " inverted elements: fit needs a valid input mesh");
+  const FitSetup setup = prepare_fit(c, mesh, settings, "fit");
+  Eigen::MatrixXd x = setup.mesh.x;
+  FitResult r;
+  {
+    py::gil_scoped_release release;
+    r = fit_to_level_sets(setup.mesh, setup.topology, setup.terms, setup.fixed, settings.fit, x);
+  }
+  FitOutcome o = fit_outcome(setup, settings, r, x);
+  o.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  o.report.meshmorph_version = meshmorph_version();
+  o.report.peak_memory_mb = peak_memory_mb();
+  nlohmann::ordered_json j = report_to_json(o.report);
+  for (auto& [key, value] : o.extra.items()) j[key] = value;
+  return {j.dump(), std::move(o.moved)};
+}
+
 }  // namespace
 }  // namespace meshmorph
 
@@ -394,6 +421,8 @@ PYBIND11_MODULE(_meshmorph, m) {
                  max);
   }, py::arg("level"), "Where the library's messages go: \"quiet\" (none, the default), \"info\", \"progress\" "
                         "(a line per iteration) or \"detail\" (Newton steps), on stderr.");
+
+  m.def("_fit", &fit_mesh, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 
   py::class_<Session>(m, "Session")
       .def_property_readonly("mesh", &Session::input)

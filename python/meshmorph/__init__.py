@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""meshmorph in Python: read and write meshes, measure their quality, morph and untangle them.
+"""meshmorph in Python: read and write meshes, measure their quality, morph, untangle and fit them.
 
     import meshmorph
     mesh = meshmorph.read_mesh("annulus.msh")
@@ -16,10 +16,11 @@ read or written raises IoError (an OSError). docs/python.md has the whole interf
 import json as _json
 
 from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality, read_mesh, set_log_level
+from ._meshmorph import _fit
 from ._meshmorph import MorphSession as _MorphSession
 from ._meshmorph import UntangleSession as _UntangleSession
 
-__all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "elevate", "quality", "read_mesh",
+__all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "elevate", "fit", "quality", "read_mesh",
            "set_log_level", "__version__"]
 
 
@@ -99,3 +100,24 @@ class Untangler(_Method):
 
     def __init__(self, mesh, boundary=None, options=None, order=None, threads=0):
         super().__init__(_UntangleSession, mesh, boundary, options, order, threads)
+
+
+def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None, threads=0):
+    """Fits `mesh` to level sets (paper 003, `meshmorph fit`): its material interface to
+    `interface`, its boundary to `trim` after the cells outside are removed, or boundary groups
+    to `project` entries of `boundary`. Level sets as in a case file (docs/level-sets.md):
+    primitives, CSG, expressions, background meshes, distance fields; relative file paths are
+    read from the current folder. `options` are the fit options of docs/fit.md, `order`
+    elevates the mesh first. The mesh must be valid.
+
+    Returns (report, mesh): the report of DESIGN §3.3 and docs/fit.md as a dict, and the
+    fitted mesh, which trimming and splits may have changed cell by cell. When
+    report["converged"] is False, report["message"] says why.
+    """
+    case = {}
+    for key, value in (("interface", interface), ("trim", trim), ("boundary", boundary), ("options", options),
+                       ("order", order)):
+        if value is not None:
+            case[key] = value
+    text, fitted = _fit(mesh, _json.dumps(case, default=_plain), threads)
+    return _json.loads(text), fitted

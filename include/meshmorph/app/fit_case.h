@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/app/report.h"
+#include "meshmorph/methods/fit.h"
+#include "meshmorph/mesh/mesh.h"
+#include "meshmorph/mesh/topology.h"
+#include "meshmorph/quality/quality_report.h"
+
+namespace meshmorph {
+
+/// What the "options" of a fit case choose (docs/fit.md, Options).
+struct FitSettings {
+  FitOptions fit;
+  bool split = true;
+  /// σ sampled at the nodes of the (elevated) input mesh and interpolated with its basis, as
+  /// in paper 003 §4.1 (x_B = x), instead of evaluated exactly.
+  bool discrete = false;
+  /// A volume group whose cells are material 1 (the others 0): the interface is taken as
+  /// given, in place of eq. 10–12.
+  std::string materials;
+};
+
+/// Reads c.options for `meshmorph fit` and the Python module's fit(), with `threads` OpenMP
+/// threads. Throws InputError naming the case file and the key.
+FitSettings read_fit_settings(const CaseFile& c, int threads);
+
+/// A fit case set up on its mesh (docs/fit.md): the mesh trimmed, split and elevated as the
+/// case asks, its topology, the level-set terms with the nodes each fits, and the fixed DOFs.
+struct FitSetup {
+  Mesh mesh;
+  Topology topology;
+  std::vector<FitTerm> terms;
+  std::vector<std::uint8_t> fixed;  ///< d per node
+  std::size_t split_cells = 0, two_facet_cells = 0;
+};
+
+/// Sets the case up on `mesh` (valid, checked against the case): every level set must cover
+/// the mesh, be a number at its nodes and cross it, and leave nodes to fit. Throws InputError
+/// whose message starts with `where` (the case file) otherwise.
+FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, const std::string& where);
+
+/// A fit's report (DESIGN §3.3) and the members that follow it (docs/fit.md, Report), the
+/// moved mesh and its quality.
+struct FitOutcome {
+  Report report;
+  nlohmann::ordered_json extra;
+  Mesh moved;
+  QualityReport quality;
+};
+FitOutcome fit_outcome(const FitSetup& setup, const FitSettings& settings, const FitResult& r, const Eigen::MatrixXd& x);
+
+}  // namespace meshmorph
