@@ -77,7 +77,7 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = read_mesh(a.mesh);
   std::vector<detail::OutputFile> outputs;
-  if (!a.json.empty()) outputs.push_back({"--json", a.json});
+  if (!a.json.empty()) outputs.push_back({"--json", a.json, false});
   if (!a.output.empty()) outputs.push_back({"-o", a.output});
   detail::check_outputs(outputs);
   const QualityReport q = quality_report(mesh);

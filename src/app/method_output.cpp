@@ -57,9 +57,9 @@ void check_outputs(const std::vector<OutputFile>& outputs) {
     const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
     if (!std::filesystem::is_directory(folder, ec))
       throw InputError(o.label + ": " + o.path.string() + ": no folder " + folder.string());
-    if (const auto input = o.named ? std::nullopt : input_file_at(o.path))
+    if (const auto input = o.may_replace_input ? std::nullopt : input_file_at(o.path))
       throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
-                       "), which only an output you name yourself may replace");
+                       "), which only an output mesh you name yourself may replace");
     for (std::size_t j = 0; j < i; ++j)
       if (same_file(outputs[j].path, o.path))
         throw InputError(o.label + ": " + o.path.string() + " is also the file of " + outputs[j].label +
@@ -80,7 +80,7 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
       for (int s = 1; s < c->steps; ++s)
         outputs.push_back({where + "output_each_step (step " + std::to_string(s) + ")", step_path(*output, s), false});
   }
-  if (report) outputs.push_back({where + (c ? "report" : "--report"), *report});
+  if (report) outputs.push_back({where + (c ? "report" : "--report"), *report, false});
   check_outputs(outputs);
 }
 

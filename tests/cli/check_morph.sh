@@ -70,14 +70,15 @@ for name in unknown_group unreachable missing_row other_group bad_finish; do
   [ ! -e "$work/$name.json" ] || fail "$name: a report was written for bad input"
 done
 # A file written by the run never replaces an input that the user did not name as the output
-# (DESIGN 3.1): the step files of output_each_step. Nor do two outputs share a file. Exit 2,
-# nothing written, the inputs unchanged.
+# mesh (DESIGN 3.1): the step files of output_each_step, a report. Nor do two outputs share a
+# file. Exit 2, nothing written, the inputs unchanged.
 cp "$mesh" "$work/own_0001.msh"
 own() {  # own NAME OUTPUT REPORT [EXTRA]: a case on the copy own_0001.msh of the mesh
   printf '{"mesh": "own_0001.msh", "boundary": %s, %s"output": "%s", "report": "%s"}\n' "$rotate" "${4:-}" "$2" "$3" \
     > "$work/$1.case.json"
 }
 own steps own.msh steps.json '"steps": 2, "output_each_step": true, '
+own reportover reportover.vtu own_0001.msh  # a report over the input mesh
 own twice twice.vtu ./twice.vtu
 # An output that cannot be written stops the run before the others are: a report in a missing
 # folder, a report path that is a folder, a step file that is a folder.
@@ -86,13 +87,14 @@ mkdir -p "$work/afolder.json" "$work/sf_0001.vtu"
 own folder folder.vtu afolder.json
 own stepfolder sf.vtu stepfolder.json '"steps": 2, "output_each_step": true, '
 before=$(cksum < "$work/own_0001.msh")
-expect steps 2 "only an output you name"
+expect steps 2 "only an output mesh you name"
+expect reportover 2 "report: .*own_0001.msh is a file this run reads"
 expect twice 2 "a path of its own"
 expect nofolder 2 "nodir/nofolder.json: no folder"
 expect folder 2 "afolder.json is a folder"
 expect stepfolder 2 "sf_0001.vtu is a folder"
 [ "$(cksum < "$work/own_0001.msh")" = "$before" ] || fail "the input mesh was changed"
-for f in own.msh steps.json twice.vtu nofolder.vtu folder.vtu sf.vtu stepfolder.json; do
+for f in own.msh steps.json reportover.vtu twice.vtu nofolder.vtu folder.vtu sf.vtu stepfolder.json; do
   [ ! -e "$work/$f" ] || fail "$f was written"
 done
 # output_each_step names its step files after -o where the case gives no "output", and

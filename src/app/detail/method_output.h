@@ -30,18 +30,19 @@ BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology);
 std::filesystem::path step_path(const std::filesystem::path& out, int step);
 
 /// A file a command writes: the key or option that gives it (for messages), its path, and
-/// whether the user named it (a mesh or report path) or the command derived it (the step
-/// files of `output_each_step`).
+/// whether it may replace a file the run reads: only a mesh the user names (DESIGN §3.1), not
+/// a report (a typo would put JSON over the mesh it describes) nor a file the command names
+/// itself (the step files of `output_each_step`).
 struct OutputFile {
   std::string label;
   std::filesystem::path path;
-  bool named = true;
+  bool may_replace_input = true;
 };
 
 /// Throws InputError, before anything is written, where an output is a folder or its folder
-/// does not exist, two outputs share a file (the later would replace the earlier) or a
-/// derived output is a file the run read: DESIGN §3.1 lets an input be replaced only where the
-/// user names it as the output.
+/// does not exist, two outputs share a file (the later would replace the earlier) or an
+/// output that may not replace an input is a file the run read: DESIGN §3.1 lets an input be
+/// replaced only where the user names it as the output.
 void check_outputs(const std::vector<OutputFile>& outputs);
 
 /// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
