@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph check CASE.json`: validates a case file against its mesh without running a
 // method, so a user (or a script) finds every bad key, group and file before a long run.
+#include <algorithm>
 #include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "app/detail/method_output.h"
+#include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/commands.h"
 #include "meshmorph/fem/validity.h"
@@ -25,6 +27,12 @@ Outcome run_check(const std::string& path, std::ostream& out) {
   const Mesh mesh = read_mesh(c.mesh);
   check_case_against_mesh(c, mesh);
   detail::check_outputs(&c, c.output, c.report);
+  // Where every motion is rigid or tabulated, its targets are the same for morph, untangle and
+  // deform: resolve them, so a node that two groups send to different places is found here.
+  // A projection is left to the method: fit moves along it, the others to its closest point.
+  if (std::none_of(c.boundary.begin(), c.boundary.end(),
+                   [](const BoundaryCondition& b) { return std::holds_alternative<ProjectMotion>(b.motion); }))
+    BoundaryMotion(c, mesh, build_topology(mesh));
   const std::size_t inverted = count_invalid_cells(mesh);
 
   out << "case     " << path << "\n"

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
-// The malformed case files of tests/data/bad_cases: each one is rejected, by the parser or
-// by the check against its mesh, with an InputError naming the file and the line:column
-// (JSON syntax), the key path, or the CSV file and line.
+// The malformed case files of tests/data/bad_cases: each one is rejected, by the parser, by the
+// check against its mesh or by resolving its motions (as `meshmorph check` does), with an
+// InputError naming the file and the line:column (JSON syntax), the key path, or the CSV file
+// and line.
 #include <map>
 
 #include <gtest/gtest.h>
 
+#include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/mesh_io.h"
@@ -46,6 +48,7 @@ const std::map<std::string, Expectation> kExpected = {
     {"group_without_elements.json",
      {"group_without_elements.json", ": boundary[0].group: physical group \"lid\" of square_unused_group.msh has no elements"}},
     {"medit_order_two.json", {"medit_order_two.json", ": output: Medit .mesh holds linear cells only; the result is of order 2"}},
+    {"conflicting_targets.json", {"conflicting_targets.json", ": boundary[1]: node 1 is also moved by boundary[0] to a different target"}},
 };
 
 std::vector<std::string> case_files() {
@@ -64,7 +67,9 @@ TEST_P(BadCaseFiles, RejectedWithFileAndPlace) {
   const auto path = kDir / GetParam();
   try {
     const CaseFile c = read_case_file(path);
-    check_case_against_mesh(c, read_mesh(c.mesh));
+    const Mesh mesh = read_mesh(c.mesh);
+    check_case_against_mesh(c, mesh);
+    BoundaryMotion(c, mesh, build_topology(mesh));
     FAIL() << GetParam() << " was accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
