@@ -65,6 +65,14 @@ Eigen::MatrixXd matrix_of(const Array& a, int dim, std::size_t n, const std::str
   return x;
 }
 
+// matrix_of for a mesh's coordinates, which must also be in the range the methods compute in.
+Eigen::MatrixXd points_of(const Array& a, int dim, std::size_t n, const std::string& what) {
+  Eigen::MatrixXd x = matrix_of(a, dim, n, what);
+  if (const auto bad = coordinate_range_problem(x))
+    throw InputError(what + ": " + (bad->node >= 0 ? "row " + std::to_string(bad->node) + ": " : std::string()) + bad->what);
+  return x;
+}
+
 template <class T>
 py::array_t<T> array_of(const std::vector<T>& v) {
   py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
@@ -149,7 +157,7 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
     throw InputError("Mesh: points: expected an array of shape (n_nodes, 2) or (n_nodes, 3)");
   Mesh m;
   m.dim = static_cast<int>(points.shape(1));
-  m.x = matrix_of(points, m.dim, static_cast<std::size_t>(points.shape(0)), "Mesh: points");
+  m.x = points_of(points, m.dim, static_cast<std::size_t>(points.shape(0)), "Mesh: points");
   m.node_tags.resize(m.n_nodes());
   for (std::size_t i = 0; i < m.n_nodes(); ++i) m.node_tags[i] = static_cast<std::int64_t>(i) + 1;
   m.cells = blocks_of(cells, m.n_nodes(), m.dim, m.dim, "Mesh: cells");
@@ -357,7 +365,7 @@ PYBIND11_MODULE(_meshmorph, m) {
       .def_property_readonly("n_cells", &Mesh::n_cells)
       .def_property(
           "points", [](const Mesh& mesh) { return rows_of(mesh.x); },
-          [](Mesh& mesh, const Array& a) { mesh.x = matrix_of(a, mesh.dim, mesh.n_nodes(), "Mesh.points"); })
+          [](Mesh& mesh, const Array& a) { mesh.x = points_of(a, mesh.dim, mesh.n_nodes(), "Mesh.points"); })
       .def_property_readonly("node_tags", [](const Mesh& mesh) { return array_of(mesh.node_tags); })
       .def_property_readonly("cell_blocks", [](const Mesh& mesh) { return block_dicts(mesh.cells); })
       .def_property_readonly("facet_blocks", [](const Mesh& mesh) { return block_dicts(mesh.facets); })

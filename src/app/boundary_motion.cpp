@@ -115,6 +115,10 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
   for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
     if (owner_[i] >= 0) targets_.role[i] = NodeRole::Prescribed;
   targets_.target = end_;
+  if (const auto bad = coordinate_range_problem(end_); bad && bad->node >= 0)
+    throw InputError(file + ": " + c.boundary[static_cast<std::size_t>(owner_[static_cast<std::size_t>(bad->node)])].key_path +
+                     ": node " + std::to_string(mesh.node_tags[static_cast<std::size_t>(bad->node)]) + ": the target's " +
+                     bad->what);
 
   // Nodes that stay put whatever slide group they are on: those of a `fixed` group (the rim of
   // a fixed wall against a sliding one: sliding would take it off the fixed wall), and those

@@ -84,6 +84,11 @@ Mesh MeshBuilder::finish(const std::string& where) {
   for (std::size_t j = 0; j < n; ++j)
     for (int k = 0; k < mesh.dim; ++k) mesh.x(k, static_cast<Eigen::Index>(j)) = xyz[3 * j + static_cast<std::size_t>(k)];
   mesh.node_tags = std::move(tags);
+  if (const auto bad = coordinate_range_problem(mesh.x))
+    throw InputError(where + ": " +
+                     (bad->node >= 0 ? "node " + std::to_string(mesh.node_tags[static_cast<std::size_t>(bad->node)]) + ": "
+                                     : std::string()) +
+                     bad->what);
   for (auto& [name, values] : node_fields) {
     MESHMORPH_CHECK(values.size() == n, "node field \"" + name + "\" does not cover every node");
     mesh.node_fields.emplace(name, Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(n)));

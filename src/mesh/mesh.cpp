@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdio>
 #include <system_error>
 
 namespace meshmorph {
@@ -79,6 +80,26 @@ std::unordered_map<std::int64_t, std::int32_t> Mesh::node_index_of_tag() const {
   for (std::size_t i = 0; i < node_tags.size(); ++i)
     if (node_tags[i] > 0) index.emplace(node_tags[i], static_cast<std::int32_t>(i));
   return index;
+}
+
+std::optional<CoordinateRangeProblem> coordinate_range_problem(const Eigen::MatrixXd& x) {
+  char text[96];
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const double v = x.col(j).cwiseAbs().maxCoeff();
+    if (v > kMaxCoordinate) {
+      std::snprintf(text, sizeof text, "coordinate %.3g is beyond +-%.0e, where cell volumes overflow", v, kMaxCoordinate);
+      return CoordinateRangeProblem{j, text};
+    }
+  }
+  if (x.cols() > 0) {
+    const double extent = (x.rowwise().maxCoeff() - x.rowwise().minCoeff()).norm();
+    if (extent < kMinExtent) {
+      std::snprintf(text, sizeof text, "the mesh's extent %.3g is below %.0e, where cell volumes underflow", extent,
+                    kMinExtent);
+      return CoordinateRangeProblem{-1, text};
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace meshmorph

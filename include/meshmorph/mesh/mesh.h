@@ -73,4 +73,18 @@ struct Mesh {
   std::unordered_map<std::int64_t, std::int32_t> node_index_of_tag() const;
 };
 
+/// Coordinates beyond ±kMaxCoordinate make the volumes of 3D cells (products of three) overflow
+/// double precision, and a mesh smaller than kMinExtent (its bounding box's diagonal) makes them
+/// underflow: the readers, the case's motions and the Python module refuse both.
+inline constexpr double kMaxCoordinate = 1e100;
+inline constexpr double kMinExtent = 1e-90;
+
+/// Why the coordinates x (d × n) are outside that range, or empty: `node` is the column of
+/// the first coordinate beyond ±kMaxCoordinate, −1 where the extent is the problem.
+struct CoordinateRangeProblem {
+  std::ptrdiff_t node = -1;
+  std::string what;
+};
+std::optional<CoordinateRangeProblem> coordinate_range_problem(const Eigen::MatrixXd& x);
+
 }  // namespace meshmorph
