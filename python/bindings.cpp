@@ -6,7 +6,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +18,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "app/detail/method_output.h"
 #include "meshmorph/app/boundary_motion.h"
@@ -80,6 +84,38 @@ py::array_t<T> array_of(const std::vector<T>& v) {
   return a;
 }
 
+// d[key] as T; InputError naming `where`.key and what was expected otherwise.
+template <class T>
+T entry(const py::dict& d, const char* key, const std::string& where, const char* expected) {
+  try {
+    return d[key].cast<T>();
+  } catch (const py::cast_error&) {
+    throw InputError(where + "." + key + ": expected " + expected + ", found " +
+                     std::string(py::str(py::type::of(d[key]).attr("__name__"))));
+  }
+}
+
+// An array of integers (signed or unsigned dtype, or a list of Python ints), as int64: floats
+// and booleans are not truncated into node numbers or tags.
+py::array_t<std::int64_t> integers_of(const py::handle& value, const std::string& where) {
+  const py::array a = py::array::ensure(value);
+  const char kind = a ? a.dtype().kind() : '?';
+  if (kind != 'i' && kind != 'u') throw InputError(where + ": expected integers");
+  return py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
+// The keys of a dict are among `known` (a comma-separated list for the message).
+void only_keys(const py::dict& d, std::initializer_list<const char*> known, const std::string& where) {
+  for (const auto& item : d) {
+    const std::string k = py::str(item.first);
+    if (std::none_of(known.begin(), known.end(), [&](const char* n) { return k == n; })) {
+      std::string list;
+      for (const char* n : known) list += (list.empty() ? "" : ", ") + std::string(n);
+      throw InputError(where + "." + k + ": unknown key (expected one of: " + list + ")");
+    }
+  }
+}
+
 // A list of cell blocks as `Mesh.cell_blocks` gives them: dicts of "type", "order", "nodes"
 // (n_cells × nodes per cell, 0-based, Gmsh's order) and, optionally, "physical" (a tag per
 // cell). `what` names the list in messages; `dims` are the topological dimensions allowed.
@@ -88,15 +124,12 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
   std::vector<CellBlock> blocks;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string where = what + "[" + std::to_string(i) + "]";
+    if (!py::isinstance<py::dict>(list[i])) throw InputError(where + ": expected a dict of type, order, nodes, physical");
     const py::dict d = list[i].cast<py::dict>();
-    for (const auto& [key, value] : d) {
-      const std::string k = key.cast<std::string>();
-      if (k != "type" && k != "order" && k != "nodes" && k != "physical")
-        throw InputError(where + "." + k + ": unknown key (expected one of: type, order, nodes, physical)");
-    }
+    only_keys(d, {"type", "order", "nodes", "physical"}, where);
     if (!d.contains("type") || !d.contains("nodes")) throw InputError(where + ": needs \"type\" and \"nodes\"");
     CellBlock b;
-    const std::string type = d["type"].cast<std::string>();
+    const std::string type = entry<std::string>(d, "type", where, "a string");
     bool known = false;
     for (ElementType t : {ElementType::Point, ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral,
                           ElementType::Tetrahedron, ElementType::Hexahedron})
@@ -104,10 +137,16 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
     if (!known || topological_dim(b.type) < min_dim || topological_dim(b.type) > max_dim)
       throw InputError(where + ".type: \"" + type + "\" is not a " + (min_dim == max_dim ? "cell" : "facet") +
                        " type of this mesh");
-    b.order = d.contains("order") ? d["order"].cast<int>() : 1;
+    b.order = 1;
+    if (d.contains("order")) {
+      if (!py::isinstance<py::int_>(d["order"]) || py::isinstance<py::bool_>(d["order"]))
+        throw InputError(where + ".order: expected an integer");
+      const long long order = d["order"].cast<long long>();
+      b.order = order >= 1 && order <= 4 ? static_cast<int>(order) : 0;
+    }
     if (b.order < 1 || b.order > std::max(1, max_order_of(b.type)))
-      throw InputError(where + ".order: " + std::to_string(b.order) + " is not an order of " + type + " cells");
-    const auto nodes = d["nodes"].cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
+      throw InputError(where + ".order: " + py::str(d["order"]).cast<std::string>() + " is not an order of " + type + " cells");
+    const auto nodes = integers_of(d["nodes"], where + ".nodes");
     const int k = b.n_nodes_per_cell();
     if (nodes.ndim() != 2 || nodes.shape(1) != k)
       throw InputError(where + ".nodes: expected an array of " + std::to_string(k) + " columns (" + type + " of order " +
@@ -124,10 +163,16 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
     b.physical.assign(n_cells, 0);
     b.entity.assign(n_cells, 0);
     if (d.contains("physical")) {
-      const auto tags = d["physical"].cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
+      const auto tags = integers_of(d["physical"], where + ".physical");
       if (tags.ndim() != 1 || static_cast<std::size_t>(tags.shape(0)) != n_cells)
         throw InputError(where + ".physical: expected one tag per cell (" + std::to_string(n_cells) + ")");
-      for (std::size_t c = 0; c < n_cells; ++c) b.physical[c] = static_cast<std::int32_t>(tags.data()[c]);
+      for (std::size_t c = 0; c < n_cells; ++c) {
+        const std::int64_t t = tags.data()[c];
+        if (t < 0 || t > std::numeric_limits<std::int32_t>::max())
+          throw InputError(where + ".physical: tag " + std::to_string(t) + " of cell " + std::to_string(c) +
+                           " is not in [0, 2^31)");
+        b.physical[c] = static_cast<std::int32_t>(t);
+      }
     }
     blocks.push_back(std::move(b));
   }
@@ -158,16 +203,50 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
   Mesh m;
   m.dim = static_cast<int>(points.shape(1));
   m.x = points_of(points, m.dim, static_cast<std::size_t>(points.shape(0)), "Mesh: points");
+  // (n, 3) points of a 2D mesh, as meshio and VTK hold them: z must be 0 and goes.
+  const auto flat = [&] {
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (py::isinstance<py::dict>(cells[i]) && cells[i].cast<py::dict>().contains("type")) {
+        const std::string t = py::str(cells[i].cast<py::dict>()["type"]);
+        if (t != "triangle" && t != "quadrilateral") return false;
+      }
+    return cells.size() > 0;
+  };
+  if (m.dim == 3 && flat()) {
+    if (!m.x.row(2).isZero(0.0)) throw InputError("Mesh: points: z is not 0 but the cells are 2D");
+    m.x = m.x.topRows(2).eval();
+    m.dim = 2;
+  }
   m.node_tags.resize(m.n_nodes());
   for (std::size_t i = 0; i < m.n_nodes(); ++i) m.node_tags[i] = static_cast<std::int64_t>(i) + 1;
   m.cells = blocks_of(cells, m.n_nodes(), m.dim, m.dim, "Mesh: cells");
   if (m.cells.empty()) throw InputError("Mesh: cells: no cell block");
   m.facets = blocks_of(facets, m.n_nodes(), 0, m.dim - 1, "Mesh: facets");
   for (std::size_t i = 0; i < groups.size(); ++i) {
+    const std::string where = "Mesh: groups[" + std::to_string(i) + "]";
+    if (!py::isinstance<py::dict>(groups[i])) throw InputError(where + ": expected a dict of name, dim, tag");
     const py::dict g = groups[i].cast<py::dict>();
-    m.groups.push_back({g["dim"].cast<int>(), g["tag"].cast<std::int32_t>(), g.contains("name") ? g["name"].cast<std::string>() : ""});
+    only_keys(g, {"name", "dim", "tag"}, where);
+    if (!g.contains("dim") || !g.contains("tag")) throw InputError(where + ": needs \"dim\" and \"tag\"");
+    const long long dim = entry<long long>(g, "dim", where, "an integer");
+    const long long tag = entry<long long>(g, "tag", where, "an integer");
+    const std::string name = g.contains("name") ? entry<std::string>(g, "name", where, "a string") : "";
+    if (dim < 0 || dim > m.dim) throw InputError(where + ".dim: " + std::to_string(dim) + " is not in [0, " + std::to_string(m.dim) + "]");
+    if (tag < 1 || tag > std::numeric_limits<std::int32_t>::max()) throw InputError(where + ".tag: " + std::to_string(tag) + " is not in [1, 2^31)");
+    if (name.find_first_of("\"\n\r") != std::string::npos)
+      throw InputError(where + ".name: a group name holds no quote or line break (MSH could not store it)");
+    for (const PhysicalGroup& other : m.groups)
+      if ((other.dim == dim && other.tag == tag) || (!name.empty() && other.name == name))
+        throw InputError(where + ": group " + (name.empty() ? std::to_string(tag) : "\"" + name + "\"") + " is given twice");
+    m.groups.push_back({static_cast<int>(dim), static_cast<std::int32_t>(tag), name});
   }
   return m;
+}
+
+// The command line's --threads range, and 0 for the OpenMP default.
+void check_threads(int threads, const std::string& where) {
+  if (threads < 0 || threads > 1024)
+    throw InputError(where + ": threads: expected 0 (all cores) or 1 to 1024, found " + std::to_string(threads));
 }
 
 py::dict quality_dict(const QualityReport& q) {
@@ -195,7 +274,12 @@ class Session {
  public:
   virtual ~Session() = default;
   const Mesh& input() const { return input_; }
-  const Eigen::MatrixXd& points() const { return x_; }
+  /// The current positions: waits for a solve of another thread to end.
+  Eigen::MatrixXd points() {
+    py::gil_scoped_release release;
+    std::lock_guard lock(mutex_);
+    return x_;
+  }
 
   /// The motion at fraction t of its path (d × n).
   Eigen::MatrixXd targets_at(double t) const {
@@ -203,18 +287,22 @@ class Session {
     return motion_ ? motion_->at(t) : input_.x;
   }
   Eigen::MatrixXd targets_from(const Array& a) const {
-    return matrix_of(a, input_.dim, input_.n_nodes(), name_ + ".solve: targets");
+    Eigen::MatrixXd x = matrix_of(a, input_.dim, input_.n_nodes(), name_ + ".solve: targets");
+    if (const auto bad = coordinate_range_problem(x); bad && bad->node >= 0)
+      throw InputError(name_ + ".solve: targets: row " + std::to_string(bad->node) + ": " + bad->what);
+    return x;
   }
 
-  /// One solve towards `target` (d × n); the report of DESIGN §3.3 as JSON text.
-  std::string solve(const Eigen::MatrixXd& target) {
+  /// One solve towards `target` (d × n): the report of DESIGN §3.3 as JSON text, and the
+  /// positions it ends at. Without the GIL; solves of one session from several threads take
+  /// turns.
+  std::pair<std::string, Eigen::MatrixXd> solve(const Eigen::MatrixXd& target) {
+    py::gil_scoped_release release;
+    std::lock_guard lock(mutex_);
     const auto start = std::chrono::steady_clock::now();
     Report report;
     nlohmann::ordered_json extra = nlohmann::ordered_json::object();
-    {
-      py::gil_scoped_release release;
-      run(target, ++step_, report, extra);
-    }
+    run(target, ++step_, report, extra);
     Mesh moved = input_;
     moved.x = x_;
     // The boundary error against this solve's targets, not the case's motion at its end.
@@ -227,14 +315,15 @@ class Session {
     report.peak_memory_mb = peak_memory_mb();
     nlohmann::ordered_json j = report_to_json(report);
     for (auto& [key, value] : extra.items()) j[key] = value;
-    return j.dump();
+    return {j.dump(), x_};
   }
 
  protected:
   /// Parses the case (`name` stands for its file in messages), checks it against the mesh and
   /// elevates the mesh to the case's order.
-  Session(const Mesh& mesh, const std::string& case_json, std::string name)
+  Session(const Mesh& mesh, const std::string& case_json, std::string name, int threads)
       : name_(std::move(name)), case_(parse_case_file(case_json, name_, false)), input_(mesh) {
+    check_threads(threads, name_);
     check_case_against_mesh(case_, input_);
     if (case_.order && *case_.order > input_.order()) input_ = elevate_order(input_, *case_.order);
     input_inverted_ = count_invalid_cells(input_);
@@ -260,13 +349,18 @@ class Session {
   BoundaryTargets bare_;
   Eigen::MatrixXd x_;
   int step_ = 0;
+  std::mutex mutex_;  // x_, step_ and the method's state belong to one solve at a time
 };
+
+// A solve's report text and its positions as (str, array).
+py::tuple solved(const std::pair<std::string, Eigen::MatrixXd>& r) { return py::make_tuple(r.first, rows_of(r.second)); }
 
 /// `meshmorph morph` on a mesh in memory: λ, μ and the weights carry from one solve to the
 /// next (Morpher), the mesh's topology, DOF numbering and symbolic factorization are made once.
 class MorphSession final : public Session {
  public:
-  MorphSession(const Mesh& mesh, const std::string& case_json, int threads) : Session(mesh, case_json, "Morpher") {
+  MorphSession(const Mesh& mesh, const std::string& case_json, int threads)
+      : Session(mesh, case_json, "Morpher", threads) {
     const MorphSettings settings = read_morph_settings(case_, threads);
     if (settings.method != "morph")
       throw InputError("Morpher: options.method: the Morpher runs \"morph\"; the baselines \"" + settings.method +
@@ -287,6 +381,12 @@ class MorphSession final : public Session {
     report.converged = r.converged;
     report.message = r.converged && r.message.empty() ? "boundary reached, mesh valid" : r.message;
     extra["guarded_cells"] = r.guarded_cells;
+    nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+    if (r.finish)
+      passes.push_back({{"step", step}, {"stall", r.finish->stall}, {"boundary_error_max", r.finish->boundary_error_max},
+                        {"initial_inverted", r.finish->initial_inverted}, {"newton", r.finish->newton},
+                        {"linear", r.finish->linear}, {"valid", r.finish->valid}, {"message", r.finish->message}});
+    extra["untangle_passes"] = passes;
   }
   std::unique_ptr<Morpher> morpher_;
 };
@@ -295,7 +395,8 @@ class MorphSession final : public Session {
 /// starts from the last result, moved by the differential predictor when it is on.
 class UntangleSession final : public Session {
  public:
-  UntangleSession(const Mesh& mesh, const std::string& case_json, int threads) : Session(mesh, case_json, "Untangler") {
+  UntangleSession(const Mesh& mesh, const std::string& case_json, int threads)
+      : Session(mesh, case_json, "Untangler", threads) {
     std::optional<UntangleReference> reference;
     options_ = read_untangle_options(case_.options, name_, threads, reference);
     resolve_untangle_reference(options_, reference, input_inverted_, name_);
@@ -313,6 +414,7 @@ class UntangleSession final : public Session {
     report.message = r.message;
     extra["initial_inverted_elements"] = r.initial_inverted;
     extra["min_edge_quality"] = r.min_quality;
+    extra["predictor"] = options_.predictor;
     extra["reference"] = options_.reference == UntangleReference::Input ? "input" : "regular";
   }
   UntangleOptions options_;
@@ -323,6 +425,7 @@ class UntangleSession final : public Session {
 /// trimmed, split and elevated, and its report as JSON text.
 std::pair<std::string, Mesh> fit_mesh(const Mesh& mesh, const std::string& case_json, int threads) {
   const auto start = std::chrono::steady_clock::now();
+  check_threads(threads, "fit");
   const CaseFile c = parse_case_file(case_json, "fit", false);
   check_case_against_mesh(c, mesh);
   const FitSettings settings = read_fit_settings(c, threads);
@@ -389,34 +492,41 @@ PYBIND11_MODULE(_meshmorph, m) {
            },
            py::arg("group"), "0-based indices of the nodes of a physical group (name, or number as a string).")
       .def("write",
-           [](const Mesh& mesh, const std::string& path, bool binary) {
+           [](const Mesh& mesh, const std::filesystem::path& path, bool binary) {
+             if (binary && path.extension() == ".mesh")
+               throw InputError(path.string() + ": binary is not available for Medit .mesh (ASCII only)");
              WriteOptions o;
              o.binary = binary;
-             py::gil_scoped_release release;
              write_mesh(path, mesh, o);
            },
            py::arg("path"), py::arg("binary") = false,
            "Writes the mesh atomically; the format comes from the extension (.msh: MSH 4.1, .vtu, .mesh).")
-      .def("copy", [](const Mesh& mesh) { return mesh; }, "An independent copy.");
+      .def("copy", [](const Mesh& mesh) { return mesh; }, "An independent copy.")
+      .def("__copy__", [](const Mesh& mesh) { return mesh; })
+      .def("__deepcopy__", [](const Mesh& mesh, const py::dict&) { return mesh; }, py::arg("memo"));
 
-  m.def("read_mesh", [](const std::string& path) {
+  m.def("read_mesh", [](const std::filesystem::path& path) {
     py::gil_scoped_release release;
     return read_mesh(path);
   }, py::arg("path"), "Reads .msh (2.2 or 4.1, ASCII or binary), .vtu or .mesh.");
   m.def("elevate", [](const Mesh& mesh, int order) {
-    if (order < mesh.order() || order > 4)
-      throw InputError("elevate: expected an order from " + std::to_string(mesh.order()) + " to 4, found " +
-                       std::to_string(order));
-    py::gil_scoped_release release;
+    int highest = 4;
+    for (const CellBlock& b : mesh.cells) highest = std::min(highest, max_order_of(b.type));
+    if (order < mesh.order() || order > highest)
+      throw InputError("elevate: expected an order from " + std::to_string(mesh.order()) + " to " +
+                       std::to_string(highest) + ", found " + std::to_string(order));
     return elevate_order(mesh, order);
   }, py::arg("mesh"), py::arg("order"), "The mesh at a higher order (straight-sided; its own nodes kept).");
   m.def("quality", [](const Mesh& mesh, const Mesh* reference) {
-    QualityReport q;
-    {
-      py::gil_scoped_release release;
-      q = quality_report(mesh, reference);
+    if (reference) {
+      bool same = reference->dim == mesh.dim && reference->n_nodes() == mesh.n_nodes() &&
+                  reference->cells.size() == mesh.cells.size();
+      for (std::size_t i = 0; same && i < mesh.cells.size(); ++i)
+        same = reference->cells[i].type == mesh.cells[i].type && reference->cells[i].order == mesh.cells[i].order &&
+               reference->cells[i].nodes == mesh.cells[i].nodes;
+      if (!same) throw InputError("quality: reference: not the same cells and nodes as the mesh");
     }
-    return quality_dict(q);
+    return quality_dict(quality_report(mesh, reference));
   }, py::arg("mesh"), py::arg("reference") = py::none(),
         "Validity and quality of every cell (`meshmorph quality`): against `reference` too (quality 1/eta "
         "of paper 000) when it is given, a mesh with the same cells.");
@@ -433,10 +543,11 @@ PYBIND11_MODULE(_meshmorph, m) {
   m.def("_fit", &fit_mesh, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 
   py::class_<Session>(m, "Session")
-      .def_property_readonly("mesh", &Session::input)
-      .def_property_readonly("points", [](const Session& s) { return rows_of(s.points()); })
-      .def("solve_at", [](Session& s, double t) { return s.solve(s.targets_at(t)); }, py::arg("t"))
-      .def("solve_to", [](Session& s, const Array& targets) { return s.solve(s.targets_from(targets)); }, py::arg("targets"));
+      .def_property_readonly("mesh", [](const Session& s) { return s.input(); })  // a copy: the reference stays
+      .def_property_readonly("points", [](Session& s) { return rows_of(s.points()); })
+      .def("solve_at", [](Session& s, double t) { return solved(s.solve(s.targets_at(t))); }, py::arg("t"))
+      .def("solve_to", [](Session& s, const Array& targets) { return solved(s.solve(s.targets_from(targets))); },
+           py::arg("targets"));
   py::class_<MorphSession, Session>(m, "MorphSession")
       .def(py::init<const Mesh&, const std::string&, int>(), py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
   py::class_<UntangleSession, Session>(m, "UntangleSession")

@@ -31,10 +31,21 @@ def _plain(value):
     raise TypeError(f"{type(value).__name__} is not a JSON value")
 
 
+def _case_text(name, case):
+    """The case as JSON text; `name` stands for its file in messages."""
+    try:
+        return _json.dumps(case, default=_plain, allow_nan=False)
+    except ValueError:
+        raise InputError(f"{name}: the boundary, options and level sets must hold finite numbers "
+                         "(NaN or infinity found)") from None
+    except TypeError as e:
+        raise InputError(f"{name}: {e}") from None
+
+
 class _Method:
     """What Morpher and Untangler share: a case on a mesh in memory, solved again and again."""
 
-    def __init__(self, session, mesh, boundary, options, order, threads):
+    def __init__(self, session, name, mesh, boundary, options, order, threads):
         case = {}
         if boundary is not None:
             case["boundary"] = boundary
@@ -42,11 +53,12 @@ class _Method:
             case["options"] = options
         if order is not None:
             case["order"] = order
-        self._session = session(mesh, _json.dumps(case, default=_plain), threads)
+        self._name = name
+        self._session = session(mesh, _case_text(name, case), threads)
 
     @property
     def mesh(self):
-        """The input mesh (elevated to `order`): the reference of the method's quality."""
+        """A copy of the input mesh (elevated to `order`): the reference of the method's quality."""
         return self._session.mesh
 
     @property
@@ -54,17 +66,23 @@ class _Method:
         """The current node positions, (n_nodes, dim)."""
         return self._session.points
 
-    def solve(self, t=1.0, targets=None):
-        """Moves the nodes towards the boundary motion at fraction `t` of its path or, when
-        `targets` (an (n_nodes, dim) array) is given, towards the positions it holds for the
-        nodes of the moving groups (its other rows are not used, but must be finite).
+    def solve(self, t=None, targets=None):
+        """Moves the nodes towards the boundary motion at fraction `t` (default 1) of its path
+        or, when `targets` (an (n_nodes, dim) array) is given, towards the positions it holds
+        for the nodes of the moving groups (its other rows are not used, but must be finite).
 
         Returns the report of DESIGN §3.3 as a dict, with "points" (n_nodes, dim) added. When
-        "converged" is False, "message" says why.
+        "converged" is False, "message" says why. Solves of one object from several threads
+        take turns.
         """
-        text = self._session.solve_at(t) if targets is None else self._session.solve_to(targets)
+        if targets is None:
+            text, points = self._session.solve_at(1.0 if t is None else t)
+        elif t is None:
+            text, points = self._session.solve_to(targets)
+        else:
+            raise InputError(f"{self._name}.solve: give t or targets, not both")
         report = _json.loads(text)
-        report["points"] = self._session.points
+        report["points"] = points
         return report
 
 
@@ -84,7 +102,7 @@ class Morpher(_Method):
     """
 
     def __init__(self, mesh, boundary, options=None, order=None, threads=0):
-        super().__init__(_MorphSession, mesh, boundary, options, order, threads)
+        super().__init__(_MorphSession, "Morpher", mesh, boundary, options, order, threads)
 
 
 class Untangler(_Method):
@@ -99,7 +117,7 @@ class Untangler(_Method):
     """
 
     def __init__(self, mesh, boundary=None, options=None, order=None, threads=0):
-        super().__init__(_UntangleSession, mesh, boundary, options, order, threads)
+        super().__init__(_UntangleSession, "Untangler", mesh, boundary, options, order, threads)
 
 
 def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None, threads=0):
@@ -119,5 +137,5 @@ def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None
                        ("order", order)):
         if value is not None:
             case[key] = value
-    text, fitted = _fit(mesh, _json.dumps(case, default=_plain), threads)
+    text, fitted = _fit(mesh, _case_text("fit", case), threads)
     return _json.loads(text), fitted

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
 """meshmorph's Python module: meshes in and out, quality, and the errors of bad input."""
+import copy
 import os
 import pathlib
 import tempfile
@@ -122,6 +123,40 @@ class MeshFromArraysTest(unittest.TestCase):
         self.assertTrue(np.array_equal(back.points, square.points))
         self.assertTrue(np.array_equal(back.group_nodes("bottom"), [0, 1]))
 
+    def test_2d_points_with_a_zero_z_column(self):
+        # meshio and VTK hold 2D points with z = 0.
+        points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+        tri = [{"type": "triangle", "nodes": [[0, 1, 2]]}]
+        m = meshmorph.Mesh(points, tri)
+        self.assertEqual(m.dim, 2)
+        self.assertTrue(np.array_equal(m.points, points[:, :2]))
+        points[2, 2] = 0.5
+        with self.assertRaisesRegex(meshmorph.InputError, "Mesh: points: z is not 0 but the cells are 2D"):
+            meshmorph.Mesh(points, tri)
+
+    def test_numbers_of_the_wrong_kind_are_not_truncated(self):
+        points = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+        tri = {"type": "triangle", "nodes": [[0, 1, 2]]}
+        cases = [
+            ([dict(tri, nodes=np.array([[0, 1, 2]]) + 0.7)], [], r"cells\[0\]\.nodes: expected integers"),
+            ([dict(tri, nodes=np.array([[True, False, True]]))], [], r"cells\[0\]\.nodes: expected integers"),
+            ([dict(tri, physical=[2**33 + 3])], [], r"cells\[0\]\.physical: tag 8589934595 of cell 0 is not in \[0, 2\^31\)"),
+            ([dict(tri, physical=[3.9])], [], r"cells\[0\]\.physical: expected integers"),
+            ([dict(tri, order="2")], [], r"cells\[0\]\.order: expected an integer"),
+            ([dict(tri, type=5)], [], r"cells\[0\]\.type: expected a string, found int"),
+            (["triangle"], [], r"cells\[0\]: expected a dict"),
+            ([tri], [{"dim": 1}], r'groups\[0\]: needs "dim" and "tag"'),
+            ([tri], [{"dim": "1", "tag": 1}], r"groups\[0\]\.dim: expected an integer, found str"),
+            ([tri], [{"dim": 7, "tag": 1}], r"groups\[0\]\.dim: 7 is not in \[0, 2\]"),
+            ([tri], [{"dim": 1, "tag": 1, "colour": "red"}], r"groups\[0\]\.colour: unknown key"),
+            ([tri], [{"dim": 1, "tag": 1, "name": 'a "b"'}], r"groups\[0\]\.name: a group name holds no quote"),
+            ([tri], [{"dim": 1, "tag": 1, "name": "a"}, {"dim": 1, "tag": 2, "name": "a"}], r'groups\[1\]: group "a" is given twice'),
+        ]
+        for cells, groups, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaisesRegex(meshmorph.InputError, message):
+                    meshmorph.Mesh(points, cells, [], groups)
+
     def test_bad_blocks(self):
         points = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
         cases = [
@@ -185,6 +220,25 @@ class MeshErrorTest(unittest.TestCase):
         with self.assertRaises(OSError):
             self.mesh.write(str(self.dir / "no" / "out.msh"))
         self.assertEqual(os.listdir(self.dir), [])
+
+    def test_paths_copies_and_mismatches(self):
+        m = meshmorph.read_mesh(ANNULUS)  # a pathlib.Path
+        m.write(self.dir / "a.vtu")
+        self.assertEqual(meshmorph.read_mesh(self.dir / "a.vtu").n_nodes, m.n_nodes)
+        with self.assertRaisesRegex(meshmorph.InputError, "binary is not available for Medit"):
+            m.write(self.dir / "a.mesh", binary=True)
+        c = copy.deepcopy(m)
+        c.points = c.points * 2
+        self.assertFalse(np.array_equal(c.points, m.points))
+        with self.assertRaisesRegex(meshmorph.InputError, "quality: reference: not the same cells and nodes"):
+            meshmorph.quality(m, meshmorph.elevate(m, 2))
+        quads = meshmorph.read_mesh(str(ROOT / "examples" / "meshes" / "quad_channel.msh"))
+        with self.assertRaisesRegex(meshmorph.InputError, "elevate: expected an order from 1 to 3, found 4"):
+            meshmorph.elevate(quads, 4)
+        with self.assertRaisesRegex(meshmorph.InputError, r"Mesh.points: row 3: coordinate 2e\+150 is beyond"):
+            p = m.points
+            p[3, 0] = 2e150
+            m.points = p
 
     def test_an_unknown_log_level(self):
         with self.assertRaisesRegex(meshmorph.InputError, "expected \"quiet\""):

@@ -6,6 +6,7 @@ import os
 import pathlib
 import subprocess
 import tempfile
+import threading
 import unittest
 
 import numpy as np
@@ -61,7 +62,8 @@ class MorpherTest(unittest.TestCase):
         self.assertTrue(np.array_equal(r["points"], cli.points))
         self.assertEqual(r["iterations"], cli_report["iterations"])
         self.assertEqual(r["history"], cli_report["history"])
-        for key in ("valid", "inverted_elements", "min_quality", "boundary_error_max", "converged", "message"):
+        for key in ("valid", "inverted_elements", "min_quality", "boundary_error_max", "converged", "message",
+                    "guarded_cells", "untangle_passes"):
             self.assertEqual(r[key], cli_report[key], key)
 
     def test_a_time_series_carries_its_state(self):
@@ -109,6 +111,34 @@ class MorpherTest(unittest.TestCase):
         self.assertLess(np.abs(r["points"] - m.mesh.points @ rotation(90.0).T).max(), 1e-10)
 
 
+class MorpherThreadTest(unittest.TestCase):
+    def test_solves_from_two_threads_take_turns(self):
+        annulus = meshmorph.read_mesh(str(ANNULUS))
+        m = meshmorph.Morpher(annulus, ROTATE)
+        results = {}
+        threads = [threading.Thread(target=lambda t=t: results.update({t: m.solve(t)})) for t in (0.5, 1.0)]
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        self.assertEqual(set(results), {0.5, 1.0})
+        for r in results.values():
+            self.assertTrue(r["converged"], r["message"])
+            self.assertTrue(r["valid"])
+        self.assertEqual(sorted(r["history"][0]["step"] for r in results.values()), [1, 2])
+        last = max(results.values(), key=lambda r: r["history"][0]["step"])
+        self.assertTrue(np.array_equal(m.points, last["points"]))
+
+    def test_the_mesh_property_is_a_copy(self):
+        annulus = meshmorph.read_mesh(str(ANNULUS))
+        m = meshmorph.Morpher(annulus, ROTATE, threads=1)
+        mesh = m.mesh
+        mesh.points = mesh.points * 1.5  # changes the copy only
+        self.assertTrue(np.array_equal(m.mesh.points, annulus.points))
+        ref = meshmorph.Morpher(annulus, ROTATE, threads=1).solve()
+        self.assertTrue(np.array_equal(m.solve()["points"], ref["points"]))
+
+
 class MorpherErrorTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -137,6 +167,19 @@ class MorpherErrorTest(unittest.TestCase):
         folded.points = p
         with self.assertRaisesRegex(meshmorph.InputError, r"Morpher: the mesh has \d+ inverted elements"):
             meshmorph.Morpher(folded, ROTATE)
+
+    def test_bad_arguments(self):
+        with self.assertRaisesRegex(meshmorph.InputError, "Morpher: the boundary, options and level sets must hold finite"):
+            meshmorph.Morpher(self.annulus, [{"group": "inner", "translate": [float("nan"), 0]}])
+        with self.assertRaisesRegex(meshmorph.InputError, "Morpher: threads: expected 0 .* found -5"):
+            meshmorph.Morpher(self.annulus, ROTATE, threads=-5)
+        m = meshmorph.Morpher(self.annulus, ROTATE)
+        with self.assertRaisesRegex(meshmorph.InputError, "Morpher.solve: give t or targets, not both"):
+            m.solve(0.5, targets=self.annulus.points)
+        targets = self.annulus.points
+        targets[self.annulus.group_nodes("inner")[0]] = [1e300, 0]
+        with self.assertRaisesRegex(meshmorph.InputError, r"targets: row \d+: coordinate 1e\+300 is beyond"):
+            m.solve(targets=targets)
 
     def test_bad_solve_arguments(self):
         m = meshmorph.Morpher(self.annulus, ROTATE)

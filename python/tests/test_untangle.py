@@ -33,7 +33,8 @@ class UntanglerTest(unittest.TestCase):
             cli = meshmorph.read_mesh(str(out))
             cli_report = json.loads(report.read_text())
         self.assertTrue(np.array_equal(r["points"], cli.points))
-        for key in ("iterations", "history", "message", "min_shape_quality", "initial_inverted_elements"):
+        for key in ("iterations", "history", "message", "min_shape_quality", "initial_inverted_elements", "predictor",
+                    "reference"):
             self.assertEqual(r[key], cli_report[key], key)
         # Its boundary stays where it was.
         moved = np.abs(r["points"] - tangled.points).max(axis=1) > 0
