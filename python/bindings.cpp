@@ -453,6 +453,10 @@ std::pair<std::string, Mesh> fit_mesh(const Mesh& mesh, const std::string& case_
 PYBIND11_MODULE(_meshmorph, m) {
   using namespace meshmorph;
   m.doc() = "meshmorph's C++ core; use the package meshmorph";
+  // NumPy's C API is looked up on its first use, under a static guard: first used by two
+  // threads at once, one held the guard and waited for the GIL while the other held the GIL
+  // and waited for the guard. Looked up now, at import.
+  (void)py::array_t<double>(0);
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<IoError>(m, "IoError", PyExc_OSError);
   m.attr("__version__") = meshmorph_version();

@@ -5,6 +5,7 @@ import json
 import os
 import pathlib
 import subprocess
+import sys
 import tempfile
 import threading
 import unittest
@@ -128,6 +129,22 @@ class MorpherThreadTest(unittest.TestCase):
         self.assertEqual(sorted(r["history"][0]["step"] for r in results.values()), [1, 2])
         last = max(results.values(), key=lambda r: r["history"][0]["step"])
         self.assertTrue(np.array_equal(m.points, last["points"]))
+
+    def test_threads_that_first_touch_numpy_together(self):
+        # A fresh interpreter that has not imported NumPy: the two solves' first arrays used to
+        # deadlock on NumPy's lookup, and two unguarded solves crashed.
+        script = f"""
+import threading, meshmorph
+mesh = meshmorph.read_mesh({str(ANNULUS)!r})
+m = meshmorph.Morpher(mesh, {ROTATE!r}, threads=1)
+ts = [threading.Thread(target=m.solve, args=(t,)) for t in (0.5, 1.0)]
+for t in ts: t.start()
+for t in ts: t.join()
+print("both done")
+"""
+        out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("both done", out.stdout)
 
     def test_the_mesh_property_is_a_copy(self):
         annulus = meshmorph.read_mesh(str(ANNULUS))
