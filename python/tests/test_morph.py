@@ -131,11 +131,11 @@ class MorpherThreadTest(unittest.TestCase):
         self.assertTrue(np.array_equal(m.points, last["points"]))
 
     def test_threads_that_first_touch_numpy_together(self):
-        # A fresh interpreter that has not imported NumPy: the two solves' first arrays used to
-        # deadlock on NumPy's lookup, and two unguarded solves crashed.
+        # A fresh interpreter that has not imported NumPy, and solves shorter than its import: the
+        # two solves' first arrays deadlocked on NumPy's lookup, and unguarded solves crashed.
         script = f"""
 import threading, meshmorph
-mesh = meshmorph.read_mesh({str(ANNULUS)!r})
+mesh = meshmorph.read_mesh({str(ROOT / "tests" / "data" / "annulus_coarse.msh")!r})
 m = meshmorph.Morpher(mesh, {ROTATE!r}, threads=1)
 ts = [threading.Thread(target=m.solve, args=(t,)) for t in (0.5, 1.0)]
 for t in ts: t.start()
