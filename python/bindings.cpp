@@ -118,7 +118,7 @@ void only_keys(const py::dict& d, std::initializer_list<const char*> known, cons
 
 // A list of cell blocks as `Mesh.cell_blocks` gives them: dicts of "type", "order", "nodes"
 // (n_cells × nodes per cell, 0-based, Gmsh's order) and, optionally, "physical" (a tag per
-// cell). `what` names the list in messages; `dims` are the topological dimensions allowed.
+// cell). `what` names the list in messages; the blocks are of dimension min_dim to max_dim.
 std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int min_dim, int max_dim,
                                  const std::string& what) {
   std::vector<CellBlock> blocks;
