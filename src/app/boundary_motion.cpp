@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/app/boundary_motion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -55,6 +56,12 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
     const BoundaryCondition& bc = c.boundary[e];
     motions_.push_back(bc.motion);
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(bc.group));
+    // An embedded curve or an internal interface: its nodes are free, so the entry would do
+    // nothing and the run report its goal reached.
+    if (std::none_of(nodes.begin(), nodes.end(), [&](std::int32_t v) { return on_boundary[static_cast<std::size_t>(v)]; }))
+      throw InputError(file + ": " + bc.key_path + ".group: no node of group \"" + bc.group +
+                       "\" is on the boundary of the mesh (boundary entries move or hold boundary nodes; the others "
+                       "follow)");
     if (!moves(bc.motion)) continue;
     // The final position of each boundary node of the group.
     auto place = [&](std::int32_t node, const Eigen::VectorXd& target) {

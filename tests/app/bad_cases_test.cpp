@@ -50,6 +50,8 @@ const std::map<std::string, Expectation> kExpected = {
     {"medit_order_two.json", {"medit_order_two.json", ": output: Medit .mesh holds linear cells only; the result is of order 2"}},
     {"translate_too_far.json",
      {"translate_too_far.json", ": boundary[0]: node 1: the target's coordinate 1e+300 is beyond +-1e+100"}},
+    {"interior_group.json",
+     {"interior_group.json", ": boundary[0].group: no node of group \"mid\" is on the boundary of the mesh"}},
     {"conflicting_targets.json", {"conflicting_targets.json", ": boundary[1]: node 1 is also moved by boundary[0] to a different target"}},
 };
 
