@@ -382,10 +382,7 @@ class MorphSession final : public Session {
     report.message = r.converged && r.message.empty() ? "boundary reached, mesh valid" : r.message;
     extra["guarded_cells"] = r.guarded_cells;
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();
-    if (r.finish)
-      passes.push_back({{"step", step}, {"stall", r.finish->stall}, {"boundary_error_max", r.finish->boundary_error_max},
-                        {"initial_inverted", r.finish->initial_inverted}, {"newton", r.finish->newton},
-                        {"linear", r.finish->linear}, {"valid", r.finish->valid}, {"message", r.finish->message}});
+    if (r.finish) passes.push_back(untangle_pass(*r.finish, step));
     extra["untangle_passes"] = passes;
   }
   std::unique_ptr<Morpher> morpher_;

@@ -72,10 +72,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       guarded = r.guarded_cells;
       for (HistoryRow& row : morph_history(r)) report.history.push_back(std::move(row));
       if (r.finish) {
-        const MorphResult::Finish& f = *r.finish;
-        finishes.push_back({{"step", s}, {"stall", f.stall}, {"boundary_error_max", f.boundary_error_max},
-                            {"initial_inverted", f.initial_inverted}, {"newton", f.newton}, {"linear", f.linear},
-                            {"valid", f.valid}, {"message", f.message}});
+        finishes.push_back(untangle_pass(*r.finish, s));
         if (r.converged) report.message = (c.steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) + r.message;
       }
       if (!r.converged) {

@@ -163,7 +163,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     }
   }
   if (c.order && *c.order > mesh.order()) mesh = elevate_order(mesh, *c.order);
-  const Topology topology = build_topology(mesh);
+  Topology topology = build_topology(mesh);
   // "level_set": "discrete": the nodal interpolant on the mesh as it is now.
   const auto compile = [&](const LevelSetFunction& exact) {
     if (!settings.discrete) return exact;
@@ -228,7 +228,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
 
   FitSetup s;
   s.mesh = std::move(mesh);
-  s.topology = topology;
+  s.topology = std::move(topology);
   s.terms = std::move(terms);
   s.fixed = std::move(fixed);
   s.split_cells = split_count;

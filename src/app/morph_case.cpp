@@ -44,6 +44,12 @@ MorphSettings read_morph_settings(const CaseFile& c, int threads) {
   return s;
 }
 
+nlohmann::ordered_json untangle_pass(const MorphResult::Finish& f, int step) {
+  return {{"step", step},       {"stall", f.stall}, {"boundary_error_max", f.boundary_error_max},
+          {"initial_inverted", f.initial_inverted}, {"newton", f.newton}, {"linear", f.linear},
+          {"valid", f.valid},   {"message", f.message}};
+}
+
 std::vector<HistoryRow> morph_history(const MorphResult& r) {
   std::vector<HistoryRow> rows;
   for (const MorphIteration& h : r.history)

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/methods/baselines.h"
@@ -26,5 +28,9 @@ MorphSettings read_morph_settings(const CaseFile& c, int threads);
 /// The report's "history" rows of one Morpher::solve (docs/morph.md, Report), one per
 /// augmented-Lagrangian iteration.
 std::vector<HistoryRow> morph_history(const MorphResult& r);
+
+/// The report's "untangle_passes" entry of a solve that finished by an untangle pass
+/// (MorphResult::finish) at time step `step`.
+nlohmann::ordered_json untangle_pass(const MorphResult::Finish& f, int step);
 
 }  // namespace meshmorph
