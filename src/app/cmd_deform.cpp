@@ -120,7 +120,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   int cvt_iterations = 0;
   EikonalDistances distances;
   bool cvt_converged = true;
-  std::size_t cvt_pinned = 0;
+  std::size_t cvt_pinned = 0, straightened = 0;
   for (int s = 1; s <= c.steps; ++s) {
     BoundaryTargets step = bc;
     step.target = motion.at(static_cast<double>(s) / c.steps);
@@ -142,11 +142,13 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
     cvt_iterations += r.cvt.iterations;
     cvt_converged = cvt_converged && (!options.cvt || r.cvt.converged);
     cvt_pinned = r.cvt.pinned;
+    straightened += r.straightened_cells;
     moved.x = r.x;
     distances = r.distances;
     const std::size_t inverted = count_invalid_cells(moved);
     report.history.push_back({{"step", s}, {"cvt_iterations", r.cvt.iterations}, {"spacing_ratio_before", r.cvt.spacing_ratio_before},
                               {"spacing_ratio_after", spacing_ratio(surface, moved.x)}, {"newton", r.newton},
+                              {"straightened", static_cast<double>(r.straightened_cells)},
                               {"inverted", static_cast<double>(inverted)}});
     report.message = (c.steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) + r.message;
     if (!r.converged || inverted > 0) {
@@ -184,6 +186,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   extra["cvt_iterations"] = cvt_iterations;
   extra["cvt_converged"] = cvt_converged;
   extra["cvt_pinned_nodes"] = cvt_pinned;
+  extra["straightened_cells"] = straightened;
   extra["spacing_ratio_input"] = spacing_ratio(surface, input.x);
   extra["spacing_ratio_unrepaired"] = spacing_ratio(surface, bc.target);
   extra["spacing_ratio"] = spacing_ratio(surface, moved.x);

@@ -59,6 +59,9 @@ struct DeformResult {
   CvtResult cvt;              ///< the CVT step (iterations 0 when it was off)
   int newton = 0;             ///< Newton steps of the two Eikonal solves
   int linear_solves = 0;      ///< linear solves of the volume extension
+  /// Curved cells that the extension inverted and whose inner nodes were put back between
+  /// their corners (straight-sided); 0 on linear meshes.
+  std::size_t straightened_cells = 0;
   bool converged = false;
   std::string message;
 };
