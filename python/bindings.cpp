@@ -160,6 +160,14 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
                          " is not in [0, " + std::to_string(n_nodes) + ")");
       b.nodes[j] = static_cast<std::int32_t>(v);
     }
+    std::vector<std::int32_t> sorted;  // a cell listing a node twice has no volume
+    for (std::size_t c = 0; c < n_cells; ++c) {
+      sorted.assign(b.cell(c), b.cell(c) + k);
+      std::sort(sorted.begin(), sorted.end());
+      if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+        throw InputError(where + ".nodes: cell " + std::to_string(c) + " lists node " + std::to_string(*twice) +
+                         " twice (a degenerate cell)");
+    }
     b.physical.assign(n_cells, 0);
     b.entity.assign(n_cells, 0);
     if (d.contains("physical")) {

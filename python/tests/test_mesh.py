@@ -162,6 +162,8 @@ class MeshFromArraysTest(unittest.TestCase):
         cases = [
             ([{"type": "triangle", "nodes": [[0, 1, 2], [0, 2, 7]]}], [], r"Mesh: cells\[0\]\.nodes: node 7 of cell 1 is not in \[0, 4\)"),
             ([{"type": "triangle", "nodes": [[0, 1, 2, 3]]}], [], r"cells\[0\]\.nodes: expected an array of 3 columns"),
+            ([{"type": "triangle", "nodes": [[0, 1, 2], [0, 3, 3]]}], [],
+             r"cells\[0\]\.nodes: cell 1 lists node 3 twice \(a degenerate cell\)"),
             ([{"type": "pyramid", "nodes": [[0, 1, 2]]}], [], r'cells\[0\]\.type: "pyramid" is not a cell type'),
             ([{"type": "tetrahedron", "nodes": [[0, 1, 2, 3]]}], [], r'cells\[0\]\.type: "tetrahedron" is not a cell type'),
             ([{"type": "triangle", "order": 5, "nodes": [[0, 1, 2]]}], [], r"cells\[0\]\.order: 5 is not an order"),

@@ -88,6 +88,8 @@ Mesh read_medit(const std::filesystem::path& path) {
           if (v < 1 || v > n_vertices)
             c.fail_at(c.token_start(), "vertex index " + std::to_string(v) + " is outside 1.." + std::to_string(n_vertices));
           block.nodes.push_back(static_cast<std::int32_t>(v - 1));
+          if (detail::repeated_node(block.nodes.data() + block.nodes.size() - 1 - j, j + 1) >= 0)
+            c.fail_at(c.token_start(), "element lists vertex " + std::to_string(v) + " twice (a degenerate element)");
         }
         block.physical.push_back(c.integer<std::int32_t>("element reference"));
         block.entity.push_back(0);

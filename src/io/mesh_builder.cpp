@@ -11,6 +11,12 @@
 
 namespace meshmorph::detail {
 
+int repeated_node(const std::int32_t* nodes, int n) {
+  for (int k = 1; k < n; ++k)
+    if (std::find(nodes, nodes + k, nodes[k]) != nodes + k) return k;
+  return -1;
+}
+
 std::ptrdiff_t TagIndex::build(const std::vector<std::int64_t>& tags) {
   dense_ = true;
   table_.clear();

@@ -30,6 +30,8 @@ void MshState::add_element(CellBlock& block, const std::int64_t* node_tags, std:
     if (i < 0) cur.fail_at(at, "element references undefined node tag " + std::to_string(node_tags[k]));
     block.nodes.push_back(i);
   }
+  if (const int k = repeated_node(block.nodes.data() + block.nodes.size() - n, n); k >= 0)
+    cur.fail_at(at, "element lists node tag " + std::to_string(node_tags[k]) + " twice (a degenerate element)");
   block.physical.push_back(physical);
   block.entity.push_back(entity);
 }

@@ -178,6 +178,9 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
       if (v < 0 || v >= n_points) f.fail(conn_node, "connectivity index " + std::to_string(v) + " is out of range");
       gmsh[static_cast<std::size_t>((*perm)[static_cast<std::size_t>(k)])] = static_cast<std::int32_t>(base + v);
     }
+    if (const int k = detail::repeated_node(gmsh.data(), n); k >= 0)
+      f.fail(conn_node, "cell " + std::to_string(i) + " lists point " + std::to_string(gmsh[static_cast<std::size_t>(k)] - base) +
+                            " twice (a degenerate cell)");
     block->nodes.insert(block->nodes.end(), gmsh.begin(), gmsh.end());
     block->physical.push_back(static_cast<std::int32_t>(physical[i]));
     block->entity.push_back(static_cast<std::int32_t>(entity[i]));

@@ -2,6 +2,7 @@
 #include "meshmorph/mesh/topology.h"
 
 #include <algorithm>
+#include <string>
 
 #include "meshmorph/error.h"
 
@@ -29,6 +30,12 @@ struct FacetKey {
   std::array<std::int32_t, 4> corners;
   CellFacet where;
 };
+
+// A node as the user knows it: its file tag, else its 1-based number.
+std::string node_label(const Mesh& mesh, std::int32_t node) {
+  const auto i = static_cast<std::size_t>(node);
+  return std::to_string(i < mesh.node_tags.size() ? mesh.node_tags[i] : static_cast<std::int64_t>(node) + 1);
+}
 
 template <class Csr>
 void prefix_sum(Csr& offsets) {
@@ -124,9 +131,9 @@ Topology build_topology(const Mesh& mesh) {
     std::size_t j = i + 1;
     while (j < keys.size() && keys[j].corners == keys[i].corners) ++j;
     if (j - i > 2)
-      throw InputError("mesh: facet with corners " + std::to_string(keys[i].corners[0]) + "," +
-                       std::to_string(keys[i].corners[1]) + ",... is shared by " + std::to_string(j - i) +
-                       " cells (non-manifold mesh)");
+      throw InputError("mesh: the facet with corner nodes " + node_label(mesh, keys[i].corners[0]) + ", " +
+                       node_label(mesh, keys[i].corners[1]) + ", ... is shared by " + std::to_string(j - i) +
+                       " cells (a non-manifold mesh, or overlapping cells)");
     const auto a = keys[i].where;
     const auto b = j - i == 2 ? keys[i + 1].where : CellFacet{};
     if (b.cell >= 0) {

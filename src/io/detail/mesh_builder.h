@@ -34,6 +34,11 @@ class TagIndex {
   std::unordered_map<std::int64_t, std::int32_t> map_;
 };
 
+/// Position in `nodes` (n entries) of the first node that an element lists twice, or −1. A
+/// cell with a repeated node has no volume; reported at its line it is found where it is
+/// wrong, not later as a facet "shared by three cells" or an inverted cell.
+int repeated_node(const std::int32_t* nodes, int n);
+
 /// Collects what a reader finds (nodes in 3D, elements of every dimension, groups) and
 /// turns it into a Mesh: dimension 3 if there is a 3D cell, else 2 (z must then be 0);
 /// elements of that dimension become cells, the others facets. A facet in several physical
