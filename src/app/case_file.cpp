@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/app/case_file.h"
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <tuple>
@@ -138,6 +139,8 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   CaseFile c;
   c.file = file;
   detail::ObjectReader r(root, JsonWhere{name, ""});
+  if (root.is_object())
+    for (const auto& item : root.items()) c.keys.push_back(item.key());
   if (const json* j = mesh_required ? &r.required("mesh") : r.optional("mesh"))
     c.mesh = detail::existing_file(detail::read_string(*j, r.at("mesh")), base, r.at("mesh"));
   if (const json* j = r.optional("order")) {
@@ -166,6 +169,15 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   if (const json* j = r.optional("report")) c.report = output_path(*j, r.at("report"), base, false);
   r.finish();
   return c;
+}
+
+void reject_unused_keys(const CaseFile& c, const std::string& method, std::initializer_list<std::string_view> unused) {
+  for (const std::string& key : c.keys)
+    if (std::find(unused.begin(), unused.end(), key) != unused.end()) {
+      const std::string owner = key == "interface" || key == "trim" ? "fit" : "morph, untangle and deform";
+      throw InputError(c.file.string() + ": " + key + ": " + method + " does not use this key; it is for " + owner +
+                       " (docs/case-file.md)");
+    }
 }
 
 CaseFile read_case_file(const std::filesystem::path& path) {

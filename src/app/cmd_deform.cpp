@@ -88,6 +88,7 @@ Projections projections(const CaseFile& c, const Mesh& mesh, const BoundaryTarge
 Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.case_file);
+  reject_unused_keys(c, "deform", {"interface", "trim"});
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
   const DeformOptions options = read_options(c, threads);
@@ -112,6 +113,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   const DesignSurface surface = design_surface(input, topology, on_design);
 
   Report report;
+  int step_files = 0;  // output_each_step files written
   report.method = "deform";
   report.case_file = a.case_file;
   report.converged = true;
@@ -156,7 +158,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
       if (inverted > 0) report.message += " left inverted cells";
       break;
     }
-    if (c.output_each_step && output && s < c.steps) write_mesh(detail::step_path(*output, s), moved);
+    if (c.output_each_step && output && s < c.steps) write_mesh(detail::step_path(*output, s), moved), ++step_files;
   }
   report.iterations = counts;
   const QualityReport q = detail::fill_result(report, moved, &input, bc);
@@ -207,7 +209,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f, min shape %.4f; inverted %zu\n", q.min_quality, q.mean_quality,
                 q.min_shape_quality, q.inverted_elements);
   out << line;
-  return detail::print_result(out, report, output);
+  return detail::print_result(out, report, output, step_files);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ struct FitArgs {
 Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.case_file);
+  reject_unused_keys(c, "fit", {"steps", "output_each_step"});
   Mesh mesh = read_mesh(c.mesh);
   check_case_against_mesh(c, mesh);
   const FitSettings settings = read_fit_settings(c, threads);

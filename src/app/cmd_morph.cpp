@@ -36,6 +36,7 @@ struct MorphArgs {
 Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.case_file);
+  reject_unused_keys(c, "morph", {"interface", "trim"});
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
   const MorphSettings settings = read_morph_settings(c, threads);
@@ -52,6 +53,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   detail::check_outputs(&c, output, report_path);
 
   Report report;
+  int step_files = 0;  // output_each_step files written
   report.method = settings.method == "morph" ? "morph" : "morph/" + settings.method;
   report.case_file = a.case_file;
   Eigen::MatrixXd x = input.x;
@@ -83,17 +85,39 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       if (c.output_each_step && output && s < c.steps) {
         Mesh moved = input;
         moved.x = x;
-        write_mesh(detail::step_path(*output, s), moved);
+        write_mesh(detail::step_path(*output, s), moved), ++step_files;
       }
     }
     report.iterations = counts;
   } else {
-    const BaselineResult r = settings.method == "laplace" ? laplace_morph(input, topology, bc, settings.baseline)
-                                                          : elastic_morph(input, topology, bc, settings.baseline);
-    x = r.x;
-    report.iterations = IterationCounts{0, 1, 0, r.linear_solves};
-    report.converged = r.linear.ok;
-    report.message = r.linear.ok ? std::string() : "the linear solver did not converge: " + r.linear.message;
+    // With `steps`, each increment is one linear solve on the mesh the last one left (the
+    // incremental Laplacian / elasticity of the mesh-motion literature).
+    Mesh current = input;
+    BoundaryTargets step = bc;
+    long long solves = 0;
+    report.converged = true;
+    for (int s = 1; s <= c.steps && report.converged; ++s) {
+      step.target = motion.at(static_cast<double>(s) / c.steps);
+      const BaselineResult r = settings.method == "laplace" ? laplace_morph(current, topology, step, settings.baseline)
+                                                            : elastic_morph(current, topology, step, settings.baseline);
+      solves += r.linear_solves;
+      current.x = r.x;
+      report.converged = r.linear.ok;
+      if (!r.linear.ok) {
+        report.message = (c.steps > 1 ? "step " + std::to_string(s) + ": " : std::string()) +
+                         "the linear solver did not converge: " + r.linear.message;
+      } else if (s < c.steps) {
+        // The next increment's stiffness needs valid cells; a baseline that inverted some ends here.
+        if (const std::size_t bad = count_invalid_cells(current); bad > 0) {
+          report.converged = false;
+          report.message = "step " + std::to_string(s) + ": " + std::to_string(bad) + " inverted elements";
+        } else if (c.output_each_step && output) {
+          write_mesh(detail::step_path(*output, s), current), ++step_files;
+        }
+      }
+    }
+    x = current.x;
+    report.iterations = IterationCounts{0, c.steps, 0, solves};
   }
 
   Mesh moved = input;
@@ -127,7 +151,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   out << line;
   std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", *report.boundary_error_max, *report.boundary_error_l2);
   out << line;
-  return detail::print_result(out, report, output);
+  return detail::print_result(out, report, output, step_files);
 }
 
 }  // namespace

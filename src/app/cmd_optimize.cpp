@@ -183,6 +183,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   Mesh mesh;
   if (is_case) {
     c = read_case_file(a.input);
+    reject_unused_keys(*c, "optimize", {"interface", "trim", "steps", "output_each_step"});
     mesh = read_mesh(c->mesh);
     check_case_against_mesh(*c, mesh);
   } else {

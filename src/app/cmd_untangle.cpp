@@ -38,6 +38,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   Mesh input;
   if (is_case) {
     c = read_case_file(a.input);
+    reject_unused_keys(*c, "untangle", {"interface", "trim"});
     input = read_mesh(c->mesh);
     check_case_against_mesh(*c, input);
   } else {
@@ -69,6 +70,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   const int steps = c ? c->steps : 1;
 
   Report report;
+  int step_files = 0;  // output_each_step files written
   report.method = "untangle";
   if (c) report.case_file = a.input;
   std::unique_ptr<Untangler> untangler;
@@ -100,7 +102,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
     if (c && c->output_each_step && output && s < steps) {
       Mesh moved = input;
       moved.x = x;
-      write_mesh(detail::step_path(*output, s), moved);
+      write_mesh(detail::step_path(*output, s), moved), ++step_files;
     }
   }
   report.iterations = counts;
@@ -130,7 +132,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  q_min (eq. 3) %.4f, min shape quality %.4f; inverted %zu\n", min_edge_quality,
                 q.min_shape_quality, q.inverted_elements);
   out << line;
-  return detail::print_result(out, report, output);
+  return detail::print_result(out, report, output, step_files);
 }
 
 }  // namespace

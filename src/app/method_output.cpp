@@ -118,9 +118,14 @@ void write_result_mesh(const Report& report, const Mesh& moved, const QualityRep
   write_mesh(*output, moved, wo);
 }
 
-Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output) {
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
+                     int step_files) {
   out << "result   " << report.message << "\n";
   if (report.converged && output) out << "wrote    " << output->string() << "\n";
+  else if (output && step_files > 0)
+    out << "wrote    no result mesh (the goal was not reached); the " << step_files << " increment"
+        << (step_files > 1 ? "s" : "") << " before: " << step_path(*output, 1).string()
+        << (step_files > 1 ? " ... " + step_path(*output, step_files).string() : std::string()) << "\n";
   else if (output) out << "wrote    no mesh (the goal was not reached)\n";
   char line[64];
   const int threads = omp_get_max_threads();  // the run's (use_method_threads)

@@ -59,6 +59,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   result.history.push_back({0, 0.0, result.energy0, g0, result.min_det0});
 
   bool converged = P.n_free() == 0 || g0 == 0.0;
+  bool at_floor = false;  // ended on options.det_floor
   std::string why;
   if (!converged) {
     NewtonOptions no;
@@ -68,12 +69,18 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
     // error scales with the measure, not with F): below it no step can be told from noise.
     no.decrement_tolerance = 1e-15 * (std::abs(result.energy0) + P.target_measure());
     bool reached = false;
+    // With a det floor, F's minimiser may lie beyond it: the steps then shrink against the
+    // floor (the line search rejects what crosses it) and the iterate sits on it, the best
+    // mesh the floor allows. Ended there once a step is cut below 1e-3.
+    const double floor = options.det_floor * result.min_det0;
+    const auto on_floor = [&] { return floor > 0.0 && P.accepted_min_det() <= floor * (1.0 + 1e-3); };
     no.on_step = [&](int step, double alpha) {
       const double g = P.current_gradient_norm();
       result.history.push_back({step, alpha, P.accepted_energy(), g, P.accepted_min_det()});
       log_progress(format("optimize: Newton %d: F %.10g, |grad F| %.3g, alpha %.3g", step, result.history.back().energy, g, alpha));
       reached = g <= options.rtol * g0;
-      return !reached;
+      at_floor = !reached && alpha < 1e-3 && on_floor();
+      return !reached && !at_floor;
     };
     NewtonStats s;
     if (kind == OptimizeSolver::MatrixFree) {
@@ -98,7 +105,8 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
       result.linear = s.linear_solves;
     }
     result.newton = s.iterations;
-    converged = reached || s.converged;
+    at_floor = at_floor || (!reached && !s.converged && on_floor());
+    converged = reached || s.converged || at_floor;
     if (!converged) why = s.message;
   }
   x = P.state();
@@ -112,7 +120,10 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   result.converged = converged;
   const double g = result.history.back().gradient_norm;
   result.message = converged ? format("optimized: F %.6g -> %.6g, |grad F| reduced by %.2g in %lld Newton steps", result.energy0,
-                                      result.energy, g0 > 0.0 ? g / g0 : 0.0, result.newton)
+                                      result.energy, g0 > 0.0 ? g / g0 : 0.0, result.newton) +
+                                   (at_floor ? format("; min det A on the det floor (%.3g of its initial value)",
+                                                      options.det_floor)
+                                             : std::string())
                              : format("stopped after %lld Newton steps at |grad F| / |grad F0| = %.2g: ", result.newton,
                                       g / g0) + why;
   return result;

@@ -145,5 +145,27 @@ TEST_P(CaseFileErrors, MessageNamesFileAndKeyPath) {
 INSTANTIATE_TEST_SUITE_P(AllKeys, CaseFileErrors, ::testing::ValuesIn(kBadCases),
                          [](const auto& p) { return std::string(p.param.name); });
 
+// A key the method would ignore is named with the methods it is for; the others pass.
+TEST(CaseFileKeys, AKeyTheMethodIgnoresIsAnError) {
+  test::TempDir dir;
+  dir.write("m.msh", "x\n");
+  const auto file = dir.path() / "case.json";
+  const CaseFile c = parse_case_file(R"({"mesh": "m.msh", "steps": 2, "trim": {"expr": "x"}})", file);
+  EXPECT_EQ(c.keys, (std::vector<std::string>{"mesh", "steps", "trim"}));
+  const auto message = [&](const std::string& method, std::initializer_list<std::string_view> unused) -> std::string {
+    try {
+      reject_unused_keys(c, method, unused);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(message("morph", {"interface", "trim"}),
+            file.string() + ": trim: morph does not use this key; it is for fit (docs/case-file.md)");
+  EXPECT_EQ(message("fit", {"steps", "output_each_step"}),
+            file.string() + ": steps: fit does not use this key; it is for morph, untangle and deform (docs/case-file.md)");
+  EXPECT_EQ(message("morph", {"interface"}), "");
+}
+
 }  // namespace
 }  // namespace meshmorph

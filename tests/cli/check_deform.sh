@@ -63,6 +63,16 @@ make_case laplace "[$design]" '{"method": "laplace", "cvt": false}'
 rc=$?
 [ "$rc" = 0 ] || [ "$rc" = 1 ] || fail "laplace: exit $rc"
 [ "$rc" = 0 ] || [ ! -e "$work/laplace.vtu" ] || fail "laplace: an invalid mesh was written"
+# The same in five increments, each written: the fourth inverts cells, so exit 1, no result
+# mesh, and the summary names the three step files that were written before it.
+printf '{"mesh": "%s", "steps": 5, "output_each_step": true, "boundary": [%s], "options": {"method": "laplace", "cvt": false}, "output": "inc.vtu"}\n' \
+  "$mesh" "$design" > "$work/inc.case.json"
+"$mm" deform "$work/inc.case.json" > "$work/inc.out" 2>&1
+rc=$?
+[ "$rc" = 1 ] || fail "inc: exit $rc, expected 1: $(cat "$work/inc.out")"
+[ ! -e "$work/inc.vtu" ] && [ -s "$work/inc_0003.vtu" ] && [ ! -e "$work/inc_0004.vtu" ] || fail "inc: files: $(ls "$work")"
+grep -q "no result mesh (the goal was not reached); the 3 increments before: .*inc_0001.vtu ... .*inc_0003.vtu" "$work/inc.out" ||
+  fail "inc: summary: $(cat "$work/inc.out")"
 
 # Bad input: exit 2, nothing written.
 make_case no_group '[{"group": "cylinder", "displace": {"file": "bump.csv"}}, {"group": "farfield", "fixed": true}]'

@@ -63,6 +63,16 @@ expect budget 1 "augmented-Lagrangian iterations"
 [ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
 make_case laplace '[{"group": "inner", "rotate": {"center": [0, 0], "degrees": 120}}]' '{"method": "laplace"}'
 expect laplace 1 "inverted elements"
+# A baseline in increments: one solve each on the mesh the last one left, every step written.
+printf '{"mesh": "%s", "boundary": %s, "options": {"method": "laplace"}, "steps": 3, "output_each_step": true, "output": "inc.vtu", "report": "inc.json"}\n' \
+  "$mesh" "$rotate" > "$work/inc.case.json"
+expect inc 0
+[ -s "$work/inc_0001.vtu" ] && [ -s "$work/inc_0002.vtu" ] && [ -s "$work/inc.vtu" ] || fail "inc: step files missing"
+grep -q '"linear": 3' "$work/inc.json" || fail "inc: not three solves: $(grep -A4 iterations "$work/inc.json")"
+# A key morph would ignore (fit's trim): exit 2.
+printf '{"mesh": "%s", "boundary": %s, "trim": {"expr": "x"}, "output": "trim.vtu"}\n' "$mesh" "$rotate" > "$work/trim.case.json"
+expect trim 2 "trim: morph does not use this key"
+[ ! -e "$work/trim.vtu" ] || fail "trim: a mesh was written"
 for name in unknown_group unreachable missing_row other_group bad_finish budget laplace; do
   [ ! -e "$work/$name.vtu" ] || fail "$name: a mesh was written"
 done

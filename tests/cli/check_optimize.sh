@@ -102,6 +102,14 @@ expect budget 1 "stopped after 1 Newton"
 [ ! -e "$work/budget.vtu" ] || fail "budget: a mesh was written by a run that missed its goal"
 [ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
 
+# A det floor that F's minimiser lies beyond: the run ends on the floor, valid, exit 0.
+printf '{"mesh": "%s", "order": 2, "options": {"det_floor": 0.9}, "output": "floor.vtu", "report": "floor.json"}\n' \
+  "$(realpath "$data/annulus_coarse.msh")" > "$work/floor.case.json"
+expect floor 0 "min det A on the det floor (0.9 of its initial value)"
+[ -s "$work/floor.vtu" ] || fail "floor: no mesh written"
+awk -v a="$(field "$work/floor.json" min_det_final)" -v b="$(field "$work/floor.json" min_det_initial)" \
+  'BEGIN { exit !(a >= 0.9 * b && a < 0.91 * b) }' || fail "floor: min det not on the floor"
+
 # Bad input: exit 2, nothing written.
 make_case unknown_option '[]' '{"delta0": 1}'
 expect unknown_option 2 "options.delta0"

@@ -2,8 +2,10 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -59,6 +61,7 @@ struct CaseFile {
   nlohmann::json options = nlohmann::json::object();  ///< validated by the method (OptionReader)
   std::optional<std::filesystem::path> output;  ///< .msh, .vtu or .mesh
   std::optional<std::filesystem::path> report;
+  std::vector<std::string> keys;     ///< the top-level keys given, in file order
 };
 
 /// Reads and validates a case file. Throws InputError whose message starts with the file
@@ -72,6 +75,11 @@ CaseFile read_case_file(const std::filesystem::path& path);
 /// Without `mesh_required` a case may leave out "mesh" (CaseFile::mesh stays empty): the
 /// Python module's Morpher has its mesh in memory.
 CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file, bool mesh_required = true);
+
+/// Rejects the keys of `unused` that the case gives: `method` would ignore them, and a run
+/// that silently leaves out what the user asked for (a `trim` to morph, `steps` to fit) is
+/// not the run they asked for. Throws InputError naming the case file and the key.
+void reject_unused_keys(const CaseFile& c, const std::string& method, std::initializer_list<std::string_view> unused);
 
 /// Checks a case against its loaded mesh: every boundary group exists (by name or number),
 /// every vector has mesh.dim entries, `rotate` has an axis exactly in 3D, cylinder and torus

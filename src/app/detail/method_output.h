@@ -62,6 +62,7 @@ void write_result_mesh(const Report& report, const Mesh& moved, const QualityRep
                        const std::optional<std::filesystem::path>& output);
 
 /// The last lines of a method's summary (result, what was written, time) and its outcome.
-Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output);
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
+                     int step_files = 0);
 
 }  // namespace meshmorph::detail
