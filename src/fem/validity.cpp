@@ -13,6 +13,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/jacobian.h"
 #include "meshmorph/fem/tensor_basis.h"
+#include "fem/detail/bezier_validity.h"
 
 namespace meshmorph {
 namespace {
@@ -141,7 +142,8 @@ double min_det_samples(ElementType type, int order, const Eigen::MatrixXd& X, co
 }  // namespace
 
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X) {
-  return min_det_samples(type, order, X, nullptr);
+  const double sampled = min_det_samples(type, order, X, nullptr);
+  return sampled > 0.0 ? detail::bezier_min_det(type, order, X, sampled) : sampled;
 }
 
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>& skip) {

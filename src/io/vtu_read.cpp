@@ -21,6 +21,8 @@
 namespace meshmorph {
 namespace {
 
+constexpr std::int64_t k_vtk_lagrange_hexahedron = 72;
+
 using detail::at_most;
 using detail::exactly;
 using detail::read_array;
@@ -173,8 +175,12 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
       last_order = order;
     }
     gmsh.resize(static_cast<std::size_t>(n));
+    // VTK 8's Lagrange hexahedra hold edge 11's nodes where VTK 9 has edge 10's, and back.
+    const int e = order - 1, swap_from = 8 + 10 * e;
+    const bool v8 = f.hexahedra_v8 && types[i] == k_vtk_lagrange_hexahedron && e > 0;
     for (int k = 0; k < n; ++k) {
-      const std::int64_t v = conn[static_cast<std::size_t>(prev + k)];
+      const int from = !v8 || k < swap_from || k >= swap_from + 2 * e ? k : (k < swap_from + e ? k + e : k - e);
+      const std::int64_t v = conn[static_cast<std::size_t>(prev + from)];
       if (v < 0 || v >= n_points) f.fail(conn_node, "connectivity index " + std::to_string(v) + " is out of range");
       gmsh[static_cast<std::size_t>((*perm)[static_cast<std::size_t>(k)])] = static_cast<std::int32_t>(base + v);
     }
@@ -233,6 +239,13 @@ Mesh read_vtu(const std::filesystem::path& path) {
   if (!compressor.empty() && compressor != "vtkZLibDataCompressor")
     f.fail(root, "unsupported compressor '" + std::string(compressor) + "' (zlib only)");
   f.compressed = !compressor.empty();
+  {
+    const std::string_view version = root.attribute("version").as_string("0.1");
+    const auto dot = version.find('.');
+    const int major = std::atoi(std::string(version.substr(0, dot)).c_str());
+    const int minor = dot == std::string_view::npos ? 0 : std::atoi(std::string(version.substr(dot + 1)).c_str());
+    f.hexahedra_v8 = major < 2 || (major == 2 && minor < 1);
+  }
   if (const pugi::xml_node ad = root.child("AppendedData")) {
     const std::string_view enc = ad.attribute("encoding").as_string("raw");
     if (enc != "raw" && enc != "base64") f.fail(ad, "AppendedData encoding must be raw or base64");

@@ -3,8 +3,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -118,6 +120,47 @@ TEST(VtkOrdering, WrittenCellNodesSitAtVtkParametricPoints) {
             EXPECT_NEAR(xyz[3 * static_cast<std::size_t>(conn[i]) + static_cast<std::size_t>(k)], vtk(k, static_cast<Eigen::Index>(i)), 1e-14)
                 << "VTK node " << i;
       }
+  fs::remove_all(dir);
+}
+
+// A file of VTKFile version below 2.1 holds Lagrange hexahedra in VTK 8's numbering: edges
+// 10 and 11 swapped. Our own file (version 2.2), rewritten that way, reads back the same.
+TEST(VtkOrdering, Vtk8HexahedraAreRenumbered) {
+  const fs::path dir = fs::temp_directory_path() / ("meshmorph_vtk8_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (int order = 2; order <= 3; ++order) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    Mesh m;
+    m.dim = 3;
+    m.x = gmsh_nodes_in_vtk_domain(ElementType::Hexahedron, order);
+    for (Eigen::Index i = 0; i < m.x.cols(); ++i) m.node_tags.push_back(i + 1);
+    CellBlock b;
+    b.type = ElementType::Hexahedron;
+    b.order = order;
+    for (Eigen::Index i = 0; i < m.x.cols(); ++i) b.nodes.push_back(static_cast<std::int32_t>(i));
+    b.physical = {1};
+    b.entity = {1};
+    m.cells.push_back(b);
+    write_mesh(dir / "v9.vtu", m);
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file((dir / "v9.vtu").c_str()));
+    ASSERT_STREQ(doc.child("VTKFile").attribute("version").as_string(), "2.2");
+    auto conn_node = doc.child("VTKFile").child("UnstructuredGrid").child("Piece").child("Cells").find_child_by_attribute(
+        "Name", "connectivity");
+    std::istringstream conn_text(conn_node.text().get());
+    std::vector<int> conn{std::istream_iterator<int>(conn_text), std::istream_iterator<int>()};
+    const int e = order - 1, first = 8 + 10 * e;
+    std::swap_ranges(conn.begin() + first, conn.begin() + first + e, conn.begin() + first + e);
+    std::ostringstream v8;
+    for (int v : conn) v8 << v << ' ';
+    conn_node.text().set(v8.str().c_str());
+    doc.child("VTKFile").attribute("version").set_value("1.0");
+    ASSERT_TRUE(doc.save_file((dir / "v8.vtu").c_str()));
+    EXPECT_EQ(read_mesh(dir / "v8.vtu").cells[0].nodes, b.nodes);
+    doc.child("VTKFile").attribute("version").set_value("2.1");  // VTK 9's numbering from 2.1 on
+    ASSERT_TRUE(doc.save_file((dir / "v8_as_v9.vtu").c_str()));
+    EXPECT_NE(read_mesh(dir / "v8_as_v9.vtu").cells[0].nodes, b.nodes);
+  }
   fs::remove_all(dir);
 }
 

@@ -17,12 +17,14 @@ namespace meshmorph {
 /// catches sign changes between nodes). Shared table.
 const ShapeTable& validity_samples(ElementType type, int order);
 
-/// min over validity_samples of det A for one element (X: dim × n nodal coordinates).
+/// min over validity_samples of det A for one element (X: dim × n nodal coordinates), or,
+/// where every sample is positive but the Bernstein expansion of det A finds it ≤ 0 between
+/// them (curved cells, hexahedra; docs/metrics.md, Validity), the value ≤ 0 it found there.
 /// An element is valid when this is > 0 (DESIGN §2). On quadrilaterals and hexahedra the
 /// samples are tensor grids, taken by sum factorization (grid_gradients).
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X);
 /// The same over the samples whose flag in `skip` (one per validity sample) is 0, sample by
-/// sample.
+/// sample, without the Bernstein expansion (the skipped samples are meant to be ≤ 0).
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>& skip);
 
 /// Number of cells of `mesh` whose min_jacobian_det is ≤ 0 (or not finite).

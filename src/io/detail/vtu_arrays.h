@@ -24,6 +24,9 @@ struct VtuFile {
   std::size_t appended_end = 0;
   bool appended_base64 = false;
   std::vector<std::size_t> appended_offsets;  // sorted offsets of all appended arrays
+  /// VTKFile version below 2.1: Lagrange hexahedra in VTK 8's numbering, whose edges 10 and
+  /// 11 VTK 9 swapped (VTK's XML reader converts such files the same way).
+  bool hexahedra_v8 = false;
 
   [[noreturn]] void fail(const pugi::xml_node& node, const std::string& msg) const {
     throw_input_error(path, text, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, node.offset_debug())),
