@@ -333,7 +333,7 @@ class Session {
       : name_(std::move(name)), case_(parse_case_file(case_json, name_, false)), input_(mesh) {
     check_threads(threads, name_);
     check_case_against_mesh(case_, input_);
-    if (case_.order && *case_.order > input_.order()) input_ = elevate_order(input_, *case_.order);
+    if (case_.order && below_order(input_, *case_.order)) input_ = elevate_order(input_, *case_.order);
     input_inverted_ = count_invalid_cells(input_);
   }
   /// Resolves the boundary entries on the mesh; without any, every boundary node is fixed.

@@ -39,7 +39,7 @@ Outcome run_convert(const ConvertArgs& a) {
   Mesh mesh = read_mesh(a.in);
   log_detail(a.in + ": " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_cells()) +
              " cells, order " + std::to_string(mesh.order()));
-  if (a.order > 0 && a.order != mesh.order()) {
+  if (a.order > 0 && (a.order != mesh.order() || below_order(mesh, a.order))) {
     if (a.order < mesh.order())
       throw InputError(a.in + ": --order " + std::to_string(a.order) + " is below the mesh's order " +
                        std::to_string(mesh.order()) + " (order can only be raised)");

@@ -92,7 +92,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
   const DeformOptions options = read_options(c, threads);
-  if (c.order && *c.order > input.order()) input = elevate_order(input, *c.order);
+  if (c.order && below_order(input, *c.order)) input = elevate_order(input, *c.order);
   const std::size_t input_inverted = count_invalid_cells(input);
   if (input_inverted > 0)
     throw InputError(a.case_file + ": " + std::to_string(input_inverted) + " cells of the input mesh are inverted; "

@@ -40,7 +40,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   Mesh input = read_mesh(c.mesh);
   check_case_against_mesh(c, input);
   const MorphSettings settings = read_morph_settings(c, threads);
-  if (c.order && *c.order > input.order()) input = elevate_order(input, *c.order);
+  if (c.order && below_order(input, *c.order)) input = elevate_order(input, *c.order);
   if (const std::size_t bad = count_invalid_cells(input); bad > 0)
     throw InputError(c.mesh.string() + ": " + std::to_string(bad) +
                      " inverted elements: morph needs a valid input mesh (untangle recovers one)");

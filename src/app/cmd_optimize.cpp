@@ -202,7 +202,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
       throw InputError(a.input + ": options.metric: \"" + options.metric + "\" is not a " + std::to_string(d) +
                        "D metric (mu2 in 2D, mu303 in 3D, mu77, mu80, distortion, distortion2)");
   }
-  if (c && c->order && *c->order > mesh.order()) mesh = elevate_order(mesh, *c->order);
+  if (c && c->order && below_order(mesh, *c->order)) mesh = elevate_order(mesh, *c->order);
 
   std::optional<std::filesystem::path> output, report_path;
   if (!a.output.empty()) output = a.output;

@@ -46,7 +46,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   }
   std::optional<UntangleReference> reference;
   UntangleOptions options = read_untangle_options(c ? c->options : nlohmann::json::object(), a.input, threads, reference);
-  if (c && c->order && *c->order > input.order()) input = elevate_order(input, *c->order);
+  if (c && c->order && below_order(input, *c->order)) input = elevate_order(input, *c->order);
   const std::size_t input_inverted = count_invalid_cells(input);
   resolve_untangle_reference(options, reference, input_inverted, a.input);
 

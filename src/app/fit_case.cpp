@@ -162,7 +162,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
       split_count += to_split.size();
     }
   }
-  if (c.order && *c.order > mesh.order()) mesh = elevate_order(mesh, *c.order);
+  if (c.order && below_order(mesh, *c.order)) mesh = elevate_order(mesh, *c.order);
   Topology topology = build_topology(mesh);
   // "level_set": "discrete": the nodal interpolant on the mesh as it is now.
   const auto compile = [&](const LevelSetFunction& exact) {

@@ -100,6 +100,12 @@ struct Elevator {
 
 }  // namespace
 
+bool below_order(const Mesh& mesh, int order) {
+  const auto below = [&](const CellBlock& b) { return b.order < order; };
+  const auto above = [&](const CellBlock& b) { return b.order > order; };
+  return std::any_of(mesh.cells.begin(), mesh.cells.end(), below) && std::none_of(mesh.cells.begin(), mesh.cells.end(), above);
+}
+
 Mesh elevate_order(const Mesh& mesh, int order) {
   for (const auto& b : mesh.cells)
     MESHMORPH_CHECK(order >= b.order, "cannot lower the order of a mesh (" + std::to_string(b.order) + " → " +

@@ -7,7 +7,7 @@
 
 namespace meshmorph::detail {
 
-void read_msh22_nodes(MshState& s) {
+void read_msh22_nodes(MshState& s, bool parametric) {
   Cursor& c = s.cur;
   const auto n = c.integer<std::uint64_t>("number of nodes");
   s.check_count(n, s.binary ? 28 : 8, c.token_start());
@@ -31,6 +31,12 @@ void read_msh22_nodes(MshState& s) {
       x[0] = c.real("x coordinate");
       x[1] = c.real("y coordinate");
       x[2] = c.real("z coordinate");
+      if (parametric) {  // Mesh.SaveParametric: the entity's dimension and tag, then u (curves) or u v (surfaces)
+        const int dim = c.integer<int>("entity dimension");
+        if (dim < 0 || dim > 3) c.fail_at(c.token_start(), "entity dimension must be 0..3");
+        c.integer<std::int64_t>("entity tag");
+        for (int k = 0; k < (dim == 1 || dim == 2 ? dim : 0); ++k) c.real("parametric coordinate");
+      }
     }
     if (tag <= 0) c.fail_at(at, "node tag must be positive");
     s.add_node(tag, x[0], x[1], x[2], at);

@@ -127,6 +127,11 @@ Mesh read_msh(const std::filesystem::path& path) {
       if (s.have_nodes) c.fail_at(at, "second $Nodes section");
       version == 41 ? detail::read_msh41_nodes(s) : detail::read_msh22_nodes(s);
       s.index_nodes(at);
+    } else if (name == "ParametricNodes" && version == 22) {  // $Nodes with each node's entity and parameters
+      if (s.have_nodes) c.fail_at(at, "second $Nodes section");
+      if (s.binary) c.fail_at(at, "binary $ParametricNodes is not supported (save without Mesh.SaveParametric)");
+      detail::read_msh22_nodes(s, true);
+      s.index_nodes(at);
     } else if (name == "NodeData") {
       if (!s.have_nodes) c.fail_at(at, "$NodeData before $Nodes");
       detail::read_node_data(s, at);

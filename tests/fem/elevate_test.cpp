@@ -86,5 +86,19 @@ TEST(Elevate, InterpolatesNodeFieldsWithTheOldBasis) {
   }
 }
 
+// A block below the order and none above: raise (also where the highest block is at it).
+TEST(Elevate, BelowOrderLooksAtEveryBlock) {
+  const Mesh p1 = structured_mesh(ElementType::Triangle, 1, 2);
+  Mesh mixed = elevate_order(p1, 3);  // the P1 nodes keep their indices
+  EXPECT_TRUE(below_order(p1, 3));
+  EXPECT_FALSE(below_order(p1, 1));
+  EXPECT_FALSE(below_order(mixed, 3));
+  mixed.cells.push_back(p1.cells[0]);
+  EXPECT_TRUE(below_order(mixed, 3));
+  EXPECT_FALSE(below_order(mixed, 2));  // the P3 block is above: nothing to raise
+  EXPECT_EQ(elevate_order(mixed, 3).cells.size(), 2u);
+  for (const CellBlock& b : elevate_order(mixed, 3).cells) EXPECT_EQ(b.order, 3);
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -38,6 +38,8 @@ TEST(ReadFixtures, GmshP2TrianglesInAllFourEncodingsAgree) {
   EXPECT_EQ(m.group_nodes(*hole).size(), 2u * 7u);  // a closed curve of 7 P2 edges: 14 nodes
   // Gmsh prints 16 significant digits in ASCII, so ASCII and binary differ by an ulp.
   test::expect_meshes_equal(m, read_mesh(data("gmsh_tri6_22a.msh")));
+  // Mesh.SaveParametric: $ParametricNodes, each node with its entity and u (v) after x y z.
+  test::expect_meshes_equal(m, read_mesh(data("gmsh_tri6_parametric_22a.msh")));
   for (const char* binary : {"gmsh_tri6_41b.msh", "gmsh_tri6_22b.msh"}) {
     SCOPED_TRACE(binary);
     test::expect_meshes_equal(m, read_mesh(data(binary)), {.tolerance = 1e-15});

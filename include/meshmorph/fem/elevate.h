@@ -11,4 +11,8 @@ namespace meshmorph {
 /// (exact for fields of the old order). Lowering the order is an error (std::invalid_argument).
 Mesh elevate_order(const Mesh& mesh, int order);
 
+/// Whether elevate_order(mesh, order) raises the mesh: a cell block below `order` and none
+/// above (a mesh of several orders is raised where its highest is `order` already).
+bool below_order(const Mesh& mesh, int order);
+
 }  // namespace meshmorph

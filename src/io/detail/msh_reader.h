@@ -62,7 +62,7 @@ void read_msh41_entities(MshState& s);
 void read_msh41_partitioned_entities(MshState& s);
 void read_msh41_nodes(MshState& s);
 void read_msh41_elements(MshState& s);
-void read_msh22_nodes(MshState& s);
+void read_msh22_nodes(MshState& s, bool parametric = false);
 void read_msh22_elements(MshState& s);
 /// One $NodeData section (2.2 and 4.1; its "$NodeData" token starts at `at`). Scalar fields go to
 /// s.node_fields (a new time step of a name replaces the previous one, sections of the
