@@ -36,8 +36,8 @@ struct DetExpansion {
   int q = 0;
   Eigen::MatrixXd unit_lattice;   ///< dim × N: the lattice on the unit simplex or [0, 1]^d, x fastest
   Eigen::MatrixXd to_bernstein;   ///< simplices: N × N; tensor cells: (q+1) × (q+1), along each axis
-  ShapeTable table;               ///< (type, order) at the lattice of the reference cell
-  TensorGrid grid;                ///< tensor cells: the same points as a grid (sum factorization)
+  ShapeTable table;               ///< simplices: (type, order) at the lattice of the reference cell
+  TensorGrid grid;                ///< tensor cells: the lattice as a grid (sum factorization)
 };
 
 Eigen::MatrixXd unit_lattice(ElementType type, int q) {
@@ -52,19 +52,13 @@ Eigen::MatrixXd unit_lattice(ElementType type, int q) {
   return X;
 }
 
-// Reference coordinates of unit-lattice points: the unit simplex is the reference simplex;
-// tensor cells live on [−1, 1]^d.
-Eigen::MatrixXd to_reference(ElementType type, const Eigen::MatrixXd& unit) {
-  return is_simplex(type) ? unit : Eigen::MatrixXd((2.0 * unit).array() - 1.0);
-}
-
 std::unique_ptr<DetExpansion> make_expansion(ElementType type, int order) {
   auto e = std::make_unique<DetExpansion>();
   const int q = e->q = det_degree(type, order);
   e->unit_lattice = unit_lattice(type, q);
-  e->table = tabulate(type, order, to_reference(type, e->unit_lattice));
   const auto n = e->unit_lattice.cols();
   if (is_simplex(type)) {
+    e->table = tabulate(type, order, e->unit_lattice);
     // M(i, α) = B_α(λ_i), λ_i = α_i / q: the Bernstein polynomials at the lattice points.
     const int dim = topological_dim(type);
     Eigen::MatrixXd M(n, n);
