@@ -21,6 +21,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "app/detail/method_output.h"
+#include "io/detail/mesh_builder.h"
 #include "meshmorph/app/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/fit_case.h"
@@ -160,14 +161,10 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
                          " is not in [0, " + std::to_string(n_nodes) + ")");
       b.nodes[j] = static_cast<std::int32_t>(v);
     }
-    std::vector<std::int32_t> sorted;  // a cell listing a node twice has no volume
-    for (std::size_t c = 0; c < n_cells; ++c) {
-      sorted.assign(b.cell(c), b.cell(c) + k);
-      std::sort(sorted.begin(), sorted.end());
-      if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
-        throw InputError(where + ".nodes: cell " + std::to_string(c) + " lists node " + std::to_string(*twice) +
+    for (std::size_t c = 0; c < n_cells; ++c)  // a cell listing a node twice has no volume
+      if (const int twice = detail::repeated_node(b.cell(c), k); twice >= 0)
+        throw InputError(where + ".nodes: cell " + std::to_string(c) + " lists node " + std::to_string(b.cell(c)[twice]) +
                          " twice (a degenerate cell)");
-    }
     b.physical.assign(n_cells, 0);
     b.entity.assign(n_cells, 0);
     if (d.contains("physical")) {

@@ -158,7 +158,7 @@ Outcome run_deform(const DeformArgs& a, int threads, std::ostream& out) {
       if (inverted > 0) report.message += " left inverted cells";
       break;
     }
-    if (c.output_each_step && output && s < c.steps) write_mesh(detail::step_path(*output, s), moved), ++step_files;
+    if (c.output_each_step && output && s < c.steps) detail::write_step_mesh(*output, s, moved, step_files);
   }
   report.iterations = counts;
   const QualityReport q = detail::fill_result(report, moved, &input, bc);

@@ -85,7 +85,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
       if (c.output_each_step && output && s < c.steps) {
         Mesh moved = input;
         moved.x = x;
-        write_mesh(detail::step_path(*output, s), moved), ++step_files;
+        detail::write_step_mesh(*output, s, moved, step_files);
       }
     }
     report.iterations = counts;
@@ -112,7 +112,7 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
           report.converged = false;
           report.message = "step " + std::to_string(s) + ": " + std::to_string(bad) + " inverted elements";
         } else if (c.output_each_step && output) {
-          write_mesh(detail::step_path(*output, s), current), ++step_files;
+          detail::write_step_mesh(*output, s, current, step_files);
         }
       }
     }

@@ -102,7 +102,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
     if (c && c->output_each_step && output && s < steps) {
       Mesh moved = input;
       moved.x = x;
-      write_mesh(detail::step_path(*output, s), moved), ++step_files;
+      detail::write_step_mesh(*output, s, moved, step_files);
     }
   }
   report.iterations = counts;

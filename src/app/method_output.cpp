@@ -118,6 +118,11 @@ void write_result_mesh(const Report& report, const Mesh& moved, const QualityRep
   write_mesh(*output, moved, wo);
 }
 
+void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written) {
+  write_mesh(step_path(output, step), mesh);
+  ++written;
+}
+
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
                      int step_files) {
   out << "result   " << report.message << "\n";

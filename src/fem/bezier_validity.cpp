@@ -40,18 +40,6 @@ struct DetExpansion {
   TensorGrid grid;                ///< tensor cells: the lattice as a grid (sum factorization)
 };
 
-Eigen::MatrixXd unit_lattice(ElementType type, int q) {
-  const int dim = topological_dim(type);
-  std::vector<Eigen::Vector3d> pts;
-  for (int k = 0; k <= (dim > 2 ? q : 0); ++k)
-    for (int j = 0; j <= q; ++j)
-      for (int i = 0; i <= q; ++i)
-        if (!is_simplex(type) || i + j + k <= q) pts.emplace_back(double(i) / q, double(j) / q, double(k) / q);
-  Eigen::MatrixXd X(dim, static_cast<Eigen::Index>(pts.size()));
-  for (std::size_t p = 0; p < pts.size(); ++p) X.col(static_cast<Eigen::Index>(p)) = pts[p].head(dim);
-  return X;
-}
-
 std::unique_ptr<DetExpansion> make_expansion(ElementType type, int order) {
   auto e = std::make_unique<DetExpansion>();
   const int q = e->q = det_degree(type, order);
@@ -106,19 +94,6 @@ void dets_at(const ShapeTable& t, const Eigen::MatrixXd& X, Eigen::VectorXd& v) 
   v.resize(t.n_points());
   for (int p = 0; p < t.n_points(); ++p) {
     const double det = Eigen::Matrix<double, d, d>(X.lazyProduct(t.grad(p))).determinant();
-    v(p) = det > -std::numeric_limits<double>::infinity() ? det : -std::numeric_limits<double>::infinity();
-  }
-}
-
-template <int d>
-void dets_on_grid(const TensorGrid& g, const Eigen::MatrixXd& X, Eigen::VectorXd& v) {
-  const int points = static_cast<int>(std::lround(std::pow(g.m, d)));
-  thread_local std::vector<double> G;
-  G.resize(static_cast<std::size_t>(d * d * points));
-  grid_gradients(g, X.data(), d, G.data());
-  v.resize(points);
-  for (int p = 0; p < points; ++p) {
-    const double det = Eigen::Map<const Eigen::Matrix<double, d, d>>(G.data() + d * d * p).determinant();
     v(p) = det > -std::numeric_limits<double>::infinity() ? det : -std::numeric_limits<double>::infinity();
   }
 }
@@ -215,6 +190,34 @@ double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X,
 }
 
 }  // namespace
+
+Eigen::MatrixXd unit_lattice(ElementType type, int m) {
+  const int dim = topological_dim(type);
+  std::vector<Eigen::Vector3d> pts;
+  for (int k = 0; k <= (dim > 2 ? m : 0); ++k)
+    for (int j = 0; j <= m; ++j)
+      for (int i = 0; i <= m; ++i)
+        if (!is_simplex(type) || i + j + k <= m) pts.emplace_back(double(i) / m, double(j) / m, double(k) / m);
+  Eigen::MatrixXd X(dim, static_cast<Eigen::Index>(pts.size()));
+  for (std::size_t p = 0; p < pts.size(); ++p) X.col(static_cast<Eigen::Index>(p)) = pts[p].head(dim);
+  return X;
+}
+
+template <int d>
+void dets_on_grid(const TensorGrid& g, const Eigen::MatrixXd& X, Eigen::VectorXd& v) {
+  const int points = static_cast<int>(std::lround(std::pow(g.m, d)));
+  thread_local std::vector<double> G;
+  G.resize(static_cast<std::size_t>(d * d * points));
+  grid_gradients(g, X.data(), d, G.data());
+  v.resize(points);
+  for (int p = 0; p < points; ++p) {
+    const double det = Eigen::Map<const Eigen::Matrix<double, d, d>>(G.data() + d * d * p).determinant();
+    v(p) = det > -std::numeric_limits<double>::infinity() ? det : -std::numeric_limits<double>::infinity();
+  }
+}
+
+template void dets_on_grid<2>(const TensorGrid&, const Eigen::MatrixXd&, Eigen::VectorXd&);
+template void dets_on_grid<3>(const TensorGrid&, const Eigen::MatrixXd&, Eigen::VectorXd&);
 
 bool det_needs_bounds(ElementType type, int order) {
   if (is_simplex(type)) return order > 1;

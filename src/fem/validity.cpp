@@ -16,26 +16,6 @@
 #include "fem/detail/bezier_validity.h"
 
 namespace meshmorph {
-namespace {
-
-// Points of the regular lattice of order m on the reference element.
-Eigen::MatrixXd lattice(ElementType type, int m) {
-  const int dim = topological_dim(type);
-  const bool simplex = is_simplex(type);
-  std::vector<Eigen::Vector3d> pts;
-  for (int k = 0; k <= (dim > 2 ? m : 0); ++k)
-    for (int j = 0; j <= m; ++j)
-      for (int i = 0; i <= m; ++i) {
-        if (simplex && i + j + k > m) continue;
-        Eigen::Vector3d t(double(i) / m, double(j) / m, double(k) / m);
-        pts.push_back(simplex ? t : Eigen::Vector3d(2 * t - Eigen::Vector3d::Ones()));
-      }
-  Eigen::MatrixXd X(dim, static_cast<Eigen::Index>(pts.size()));
-  for (std::size_t p = 0; p < pts.size(); ++p) X.col(static_cast<Eigen::Index>(p)) = pts[p].head(dim);
-  return X;
-}
-
-}  // namespace
 
 const ShapeTable& validity_samples(ElementType type, int order) {
   static std::mutex mutex;
@@ -47,7 +27,8 @@ const ShapeTable& validity_samples(ElementType type, int order) {
     const auto& nodes = reference_element(type, order).nodes;
     // det A is constant on linear simplices; elsewhere add the order-2p lattice.
     const bool dense = order > 1 || !is_simplex(type);
-    const Eigen::MatrixXd extra = dense ? lattice(type, 2 * order) : Eigen::MatrixXd(nodes.rows(), 0);
+    Eigen::MatrixXd extra = dense ? detail::unit_lattice(type, 2 * order) : Eigen::MatrixXd(nodes.rows(), 0);
+    if (!is_simplex(type)) extra = (2.0 * extra.array() - 1.0).matrix();  // tensor cells live on [−1, 1]^d
     Eigen::MatrixXd pts(nodes.rows(), rule.points.cols() + nodes.cols() + extra.cols());
     pts << rule.points, nodes, extra;
     slot = std::make_unique<ShapeTable>(tabulate(type, order, pts));
@@ -105,17 +86,11 @@ const std::vector<TensorGrid>& tensor_samples(ElementType type, int order) {
 // min det A over tensor grids (X: d × n, column-major).
 template <int d>
 double min_det_grids(const std::vector<TensorGrid>& grids, const Eigen::MatrixXd& X) {
-  thread_local std::vector<double> G;
+  thread_local Eigen::VectorXd v;
   double lowest = std::numeric_limits<double>::infinity();
   for (const TensorGrid& g : grids) {
-    const int points = static_cast<int>(std::lround(std::pow(g.m, d)));
-    G.resize(static_cast<std::size_t>(d * d * points));
-    grid_gradients(g, X.data(), d, G.data());
-    for (int q = 0; q < points; ++q) {
-      const double det = Eigen::Map<const Eigen::Matrix<double, d, d>>(G.data() + d * d * q).determinant();
-      if (!(det > -std::numeric_limits<double>::infinity())) return -std::numeric_limits<double>::infinity();  // NaN
-      lowest = std::min(lowest, det);
-    }
+    detail::dets_on_grid<d>(g, X, v);
+    lowest = std::min(lowest, v.minCoeff());
   }
   return lowest;
 }

@@ -61,6 +61,10 @@ QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, 
 void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
                        const std::optional<std::filesystem::path>& output);
 
+/// Writes increment `step` of a series (`output_each_step`) at step_path(output, step) and
+/// counts it in `written`, for the summary.
+void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written);
+
 /// The last lines of a method's summary (result, what was written, time) and its outcome.
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
                      int step_files = 0);

@@ -2,9 +2,19 @@
 #pragma once
 #include <Eigen/Core>
 
+#include "meshmorph/fem/tensor_basis.h"
 #include "meshmorph/mesh/element_type.h"
 
 namespace meshmorph::detail {
+
+/// The regular lattice of order m on the unit simplex or the unit box [0, 1]^d (dim × N, x
+/// fastest): the validity samples' order-2p lattice, and the points whose values give the
+/// Bernstein coefficients of det A.
+Eigen::MatrixXd unit_lattice(ElementType type, int m);
+
+/// det A at the points of a tensor grid (X: dim × n nodes), NaN as −∞, by sum factorization.
+template <int d>
+void dets_on_grid(const TensorGrid& g, const Eigen::MatrixXd& X, Eigen::VectorXd& v);
 
 /// Whether det A of a cell of (type, order) can dip below its sampled values: it is constant
 /// on linear simplices and bilinear on linear quadrilaterals (extreme at the corners, which
