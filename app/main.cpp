@@ -14,7 +14,7 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "meshmorph/app/commands.h"
+#include "meshmorph/cli/commands.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""meshmorph in Python: read and write meshes, measure their quality, morph, untangle and fit them.
+"""meshmorph in Python: read, convert and measure meshes; morph, untangle, fit, deform and optimize them.
 
     import meshmorph
     mesh = meshmorph.read_mesh("annulus.msh")
@@ -16,12 +16,12 @@ read or written raises IoError (an OSError). docs/python.md has the whole interf
 import json as _json
 
 from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality, read_mesh, set_log_level
-from ._meshmorph import _fit
+from ._meshmorph import _convert, _deform, _fit, _morph, _optimize, _untangle
 from ._meshmorph import MorphSession as _MorphSession
 from ._meshmorph import UntangleSession as _UntangleSession
 
-__all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "elevate", "fit", "quality", "read_mesh",
-           "set_log_level", "__version__"]
+__all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "convert", "deform", "elevate", "fit", "morph",
+           "optimize", "quality", "read_mesh", "set_log_level", "untangle", "__version__"]
 
 
 def _plain(value):
@@ -132,10 +132,55 @@ def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None
     fitted mesh, which trimming and splits may have changed cell by cell. When
     report["converged"] is False, report["message"] says why.
     """
-    case = {}
-    for key, value in (("interface", interface), ("trim", trim), ("boundary", boundary), ("options", options),
-                       ("order", order)):
-        if value is not None:
-            case[key] = value
-    text, fitted = _fit(mesh, _case_text("fit", case), threads)
-    return _json.loads(text), fitted
+    return _run(_fit, "fit", mesh, threads, interface=interface, trim=trim, boundary=boundary, options=options, order=order)
+
+
+def _run(method, name, mesh, threads, **keys):
+    """A whole case of the command line's runner on `mesh`: (report dict, moved mesh)."""
+    case = {key: value for key, value in keys.items() if value is not None}
+    text, moved = method(mesh, _case_text(name, case), threads)
+    return _json.loads(text), moved
+
+
+def morph(mesh, boundary, options=None, order=None, steps=None, threads=0):
+    """Morphs `mesh` as `meshmorph morph` runs a case (paper 000, or the baselines with
+    options["method"] "laplace" or "elastic"): `boundary`, `options`, `order` and `steps` are
+    the case file's keys (docs/case-file.md, docs/morph.md). Returns (report, mesh): the report
+    of DESIGN §3.3 as a dict and the morphed mesh. When report["converged"] is False,
+    report["message"] says why. Morpher solves again and again with its state kept.
+    """
+    return _run(_morph, "morph", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+
+
+def untangle(mesh, boundary=None, options=None, order=None, steps=None, threads=0):
+    """Untangles and smooths `mesh` as `meshmorph untangle` runs a case (paper 001); without
+    `boundary` every boundary node stays where it is (`meshmorph untangle MESH`). Returns
+    (report, mesh); the report holds "steps" as the command line's does.
+    """
+    return _run(_untangle, "untangle", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+
+
+def deform(mesh, boundary, options=None, order=None, steps=None, threads=0):
+    """Deforms `mesh` as `meshmorph deform` runs a case (paper 004): CVT repair of the moved
+    design surface, then Eikonal convection into the volume. `boundary` must move a design
+    group; `options` are those of docs/deform.md. Returns (report, mesh).
+    """
+    return _run(_deform, "deform", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+
+
+def optimize(mesh, boundary=None, options=None, order=None, threads=0):
+    """Optimizes `mesh` by TMOP as `meshmorph optimize` does (docs/optimize.md): `options`
+    choose the metric, target and boundary treatment ("boundary": "fixed", "slide",
+    "slide-planes"); `boundary` entries fix a group, let it slide or project it onto a level
+    set. A tangled mesh is untangled first. threads=0 picks as the command line does (one
+    thread below 30 000 unknowns). Returns (report, mesh).
+    """
+    return _run(_optimize, "optimize", mesh, threads, boundary=boundary, options=options, order=order)
+
+
+def convert(input, output, order=None, binary=False, msh22=False):
+    """`meshmorph convert`: reads `input`, raises it to `order` (straight-sided) and writes
+    `output` atomically in the format of its extension (binary MSH or VTU with `binary`, MSH 2.2
+    with `msh22`). Returns the converted mesh.
+    """
+    return _convert(input, output, 0 if order is None else order, binary, msh22)

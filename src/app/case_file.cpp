@@ -180,6 +180,13 @@ void reject_unused_keys(const CaseFile& c, const std::string& method, std::initi
     }
 }
 
+CaseFile bare_case(const std::filesystem::path& path) {
+  CaseFile c;
+  c.file = path;
+  c.mesh = path;
+  return c;
+}
+
 CaseFile read_case_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a folder, not a case file");

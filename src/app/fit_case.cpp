@@ -12,6 +12,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 #include "meshmorph/fem/trace.h"
+#include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
@@ -236,8 +237,21 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   return s;
 }
 
-FitOutcome fit_outcome(const FitSetup& setup, const FitSettings& settings, const FitResult& r, const Eigen::MatrixXd& x) {
-  FitOutcome o;
+FitRunner::FitRunner(const CaseFile& c, Mesh mesh, int threads) {
+  reject_unused_keys(c, "fit", {"steps", "output_each_step"});
+  check_case_against_mesh(c, mesh);
+  settings_ = read_fit_settings(c, threads);
+  if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
+    throw InputError(detail::inverted_input(c, bad) + ": fit needs a valid input mesh");
+  setup_ = prepare_fit(c, std::move(mesh), settings_, c.file.string());
+}
+
+RunOutput FitRunner::run() const {
+  const FitSetup& setup = setup_;
+  const FitSettings& settings = settings_;
+  Eigen::MatrixXd x = setup.mesh.x;
+  const FitResult r = fit_to_level_sets(setup.mesh, setup.topology, setup.terms, setup.fixed, settings.fit, x);
+  RunOutput o;
   Report& report = o.report;
   report.method = "fit";
   report.converged = r.converged;

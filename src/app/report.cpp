@@ -141,12 +141,16 @@ Report report_from_json(const ordered_json& oj, const std::string& file) {
   return r;
 }
 
-void write_report(const std::filesystem::path& path, Report report, const ordered_json& extra) {
+ordered_json report_json(Report report, const ordered_json& extra) {
   if (report.meshmorph_version.empty()) report.meshmorph_version = meshmorph_version();
   if (!report.peak_memory_mb) report.peak_memory_mb = peak_memory_mb();
   ordered_json j = report_to_json(report);
   for (const auto& item : extra.items()) j[item.key()] = item.value();
-  const std::string text = j.dump(2) + "\n";
+  return j;
+}
+
+void write_report(const std::filesystem::path& path, Report report, const ordered_json& extra) {
+  const std::string text = report_json(std::move(report), extra).dump(2) + "\n";
   write_atomically(path, false, [&](std::ostream& out) { out << text; });
 }
 

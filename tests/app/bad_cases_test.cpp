@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "meshmorph/app/boundary_motion.h"
+#include "meshmorph/methods/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/mesh_io.h"
@@ -73,7 +73,7 @@ TEST_P(BadCaseFiles, RejectedWithFileAndPlace) {
     const CaseFile c = read_case_file(path);
     const Mesh mesh = read_mesh(c.mesh);
     check_case_against_mesh(c, mesh);
-    BoundaryMotion(c, mesh, build_topology(mesh));
+    BoundaryMotion(c.boundary, c.file.string(), mesh, build_topology(mesh));
     FAIL() << GetParam() << " was accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // BoundaryMotion: the role of nodes that two boundary groups share.
-#include "meshmorph/app/boundary_motion.h"
+#include "meshmorph/methods/boundary_motion.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "meshmorph/app/case_file.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/mesh/topology.h"
 
@@ -34,7 +35,7 @@ TEST(BoundaryMotion, SharedNodesKeepEveryPlaneTheyAreOn) {
   for (const char* slide : {"bottom", "left"}) c.boundary.push_back(entry(slide, SlideMotion{}));
   c.boundary.push_back(entry("right", FixedMotion{}));
   c.boundary.push_back(entry("top", TranslateMotion{Eigen::Vector2d(0.1, 0)}));
-  const BoundaryMotion motion(c, m, topo);
+  const BoundaryMotion motion(c.boundary, c.file.string(), m, topo);
   const BoundaryTargets& bc = motion.targets();
   // Bottom and left slide at an angle: their corner is their only common point.
   EXPECT_EQ(bc.role[node_at(m, 0, 0)], NodeRole::Fixed);
@@ -61,7 +62,7 @@ TEST(BoundaryMotion, TwoSlideGroupsOnOnePlaneShareItsNodes) {
   c.file = "case.json";
   for (const char* slide : {"bottom", "floor"}) c.boundary.push_back(entry(slide, SlideMotion{}));
   c.boundary.push_back(entry("top", TranslateMotion{Eigen::Vector2d(0.1, 0)}));
-  const BoundaryMotion motion(c, m, topo);
+  const BoundaryMotion motion(c.boundary, c.file.string(), m, topo);
   const BoundaryTargets& bc = motion.targets();
   EXPECT_EQ(bc.role[node_at(m, 0.25, 0)], NodeRole::Slide);
   // The bottom's corners are on no other listed group: they slide with it.

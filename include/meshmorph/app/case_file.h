@@ -13,39 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "meshmorph/geometry/level_set.h"
+#include "meshmorph/methods/boundary_motion.h"
 #include "meshmorph/mesh/mesh.h"
 
 namespace meshmorph {
-
-/// Nodal displacements read from a CSV file `node,dx,dy[,dz]` (node = tag in the mesh file).
-struct DisplacementTable {
-  std::filesystem::path file;
-  std::vector<std::int64_t> node_tags;  ///< unique, in file order
-  Eigen::MatrixXd displacement;         ///< (2 or 3) × node_tags.size()
-  std::vector<int> line;                ///< line of each row in `file`, for later messages
-};
-
-struct FixedMotion {};
-struct TranslateMotion { CaseVector displacement; };
-/// Rotation by `degrees` (counter-clockwise about `axis`, right-hand rule) around `center`;
-/// `axis` is absent in 2D.
-struct RotateMotion { CaseVector center; std::optional<CaseVector> axis; double degrees = 0; };
-struct ScaleMotion { CaseVector center; double factor = 1; };
-/// Each node of the group moves to (morph, untangle) or along (fit) the zero level set.
-struct ProjectMotion { LevelSet target; };
-struct DisplaceMotion { DisplacementTable table; };
-/// Tangential motion on the group's initial plane.
-struct SlideMotion {};
-
-using Motion = std::variant<FixedMotion, TranslateMotion, RotateMotion, ScaleMotion, ProjectMotion,
-                            DisplaceMotion, SlideMotion>;
-
-/// One entry of "boundary": a physical group (name, or number as decimal digits) and its motion.
-struct BoundaryCondition {
-  std::string group;
-  Motion motion;
-  std::string key_path;  ///< "boundary[i]"
-};
 
 /// A parsed and validated case file (DESIGN §3.2). Paths are resolved against the folder of
 /// the case file; unset optional keys stay empty.
@@ -75,6 +46,10 @@ CaseFile read_case_file(const std::filesystem::path& path);
 /// Without `mesh_required` a case may leave out "mesh" (CaseFile::mesh stays empty): the
 /// Python module's Morpher has its mesh in memory.
 CaseFile parse_case_file(const std::string& text, const std::filesystem::path& file, bool mesh_required = true);
+
+/// The case of a bare mesh (`meshmorph untangle MESH`, `optimize MESH`): no boundary entry (every
+/// boundary node stays where it is), the defaults of every option; `path` names it in messages.
+CaseFile bare_case(const std::filesystem::path& path);
 
 /// Rejects the keys of `unused` that the case gives: `method` would ignore them, and a run
 /// that silently leaves out what the user asked for (a `trim` to morph, `steps` to fit) is

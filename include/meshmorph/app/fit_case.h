@@ -9,6 +9,7 @@
 
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/report.h"
+#include "meshmorph/app/run_output.h"
 #include "meshmorph/methods/fit.h"
 #include "meshmorph/mesh/mesh.h"
 #include "meshmorph/mesh/topology.h"
@@ -47,14 +48,22 @@ struct FitSetup {
 /// whose message starts with `where` (the case file) otherwise.
 FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, const std::string& where);
 
-/// A fit's report (DESIGN §3.3) and the members that follow it (docs/fit.md, Report), the
-/// moved mesh and its quality.
-struct FitOutcome {
-  Report report;
-  nlohmann::ordered_json extra;
-  Mesh moved;
-  QualityReport quality;
+/// The case runner of `meshmorph fit` and of the Python module's fit() (paper 003).
+class FitRunner {
+ public:
+  /// Rejects keys fit does not use, checks the case against `mesh` (which must be valid),
+  /// reads its options and sets it up (prepare_fit). Throws InputError naming the case file.
+  FitRunner(const CaseFile& c, Mesh mesh, int threads);
+
+  const FitSetup& setup() const { return setup_; }
+  const FitSettings& settings() const { return settings_; }
+  /// The fit: its report (DESIGN §3.3) and the members that follow it (docs/fit.md,
+  /// Report), the fitted mesh and its quality.
+  RunOutput run() const;
+
+ private:
+  FitSettings settings_;
+  FitSetup setup_;
 };
-FitOutcome fit_outcome(const FitSetup& setup, const FitSettings& settings, const FitResult& r, const Eigen::MatrixXd& x);
 
 }  // namespace meshmorph

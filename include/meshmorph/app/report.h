@@ -63,6 +63,10 @@ nlohmann::ordered_json report_to_json(const Report& report);
 /// Parses report_to_json's output back. Throws InputError naming `file` and the key.
 Report report_from_json(const nlohmann::ordered_json& j, const std::string& file = "report");
 
+/// The report and `extra` (an object whose members follow "history") as one JSON object, with
+/// meshmorph_version and peak_memory_mb filled where they are empty: what write_report writes.
+nlohmann::ordered_json report_json(Report report, const nlohmann::ordered_json& extra);
+
 /// Writes the report atomically (io/atomic_file.h), filling meshmorph_version and
 /// peak_memory_mb when they are empty; the members of `extra` (an object, e.g. a
 /// subcommand's histogram) follow "history". Throws IoError when it cannot be written.

@@ -1,8 +1,5 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <filesystem>
-#include <optional>
-#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,7 +7,6 @@
 #include <Eigen/Core>
 
 #include "meshmorph/app/case_file.h"
-#include "meshmorph/app/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/mesh/mesh.h"
@@ -23,50 +19,16 @@ namespace meshmorph::detail {
 /// Slide nodes from their planes.
 std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen::MatrixXd& x);
 
-/// The boundary conditions of a bare mesh: every boundary node fixed, the interior free.
-BoundaryTargets fixed_boundary(const Mesh& mesh, const Topology& topology);
-
-/// `out` with the step number before the extension: out_0003.vtu (`output_each_step`).
-std::filesystem::path step_path(const std::filesystem::path& out, int step);
-
-/// A file a command writes: the key or option that gives it (for messages), its path, and
-/// whether it may replace a file the run reads: only a mesh the user names (DESIGN §3.1), not
-/// a report (a typo would put JSON over the mesh it describes) nor a file the command names
-/// itself (the step files of `output_each_step`).
-struct OutputFile {
-  std::string label;
-  std::filesystem::path path;
-  bool may_replace_input = true;
-};
-
-/// Throws InputError, before anything is written, where an output is a folder or its folder
-/// does not exist, two outputs share a file (the later would replace the earlier) or an
-/// output that may not replace an input is a file the run read: DESIGN §3.1 lets an input be
-/// replaced only where the user names it as the output.
-void check_outputs(const std::vector<OutputFile>& outputs);
-
-/// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
-/// step meshes) and its `report`, labelled by the case file's keys, or by the command-line
-/// options where `c` is null (a bare mesh).
-void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
-                   const std::optional<std::filesystem::path>& report);
+/// `bc` with the targets of its Prescribed nodes taken from `target` (d × n).
+BoundaryTargets with_targets(BoundaryTargets bc, const Eigen::MatrixXd& target);
 
 /// Measures `moved` and fills the mesh, quality and boundary fields of a method's report
 /// (DESIGN §3.3): quality against `input` unless it is null. An invalid result is not
 /// converged, whatever the method said, and the message says how many cells are inverted.
 QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc);
 
-/// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
-/// method writes no mesh otherwise, DESIGN §3.1).
-void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
-                       const std::optional<std::filesystem::path>& output);
-
-/// Writes increment `step` of a series (`output_each_step`) at step_path(output, step) and
-/// counts it in `written`, for the summary.
-void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written);
-
-/// The last lines of a method's summary (result, what was written, time) and its outcome.
-Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
-                     int step_files = 0);
+/// "mesh.msh: 3 inverted elements" for a case read from a file, "Morpher: the mesh has 3
+/// inverted elements" for one whose mesh is in memory (CaseFile::mesh empty).
+std::string inverted_input(const CaseFile& c, std::size_t inverted);
 
 }  // namespace meshmorph::detail

@@ -7,10 +7,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/detail/method_output.h"
-#include "meshmorph/app/boundary_motion.h"
+#include "cli/detail/output_files.h"
+#include "meshmorph/methods/boundary_motion.h"
 #include "meshmorph/app/case_file.h"
-#include "meshmorph/app/commands.h"
+#include "meshmorph/cli/commands.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 
@@ -32,7 +32,7 @@ Outcome run_check(const std::string& path, std::ostream& out) {
   // A projection is left to the method: fit moves along it, the others to its closest point.
   if (std::none_of(c.boundary.begin(), c.boundary.end(),
                    [](const BoundaryCondition& b) { return std::holds_alternative<ProjectMotion>(b.motion); }))
-    BoundaryMotion(c, mesh, build_topology(mesh));
+    BoundaryMotion(c.boundary, c.file.string(), mesh, build_topology(mesh));
   const std::size_t inverted = count_invalid_cells(mesh);
 
   out << "case     " << path << "\n"

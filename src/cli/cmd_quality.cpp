@@ -9,13 +9,13 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/detail/method_output.h"
-#include "meshmorph/app/commands.h"
+#include "cli/detail/output_files.h"
+#include "meshmorph/cli/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/log.h"
-#include "meshmorph/quality/quality_report.h"
+#include "meshmorph/app/quality_case.h"
 
 namespace meshmorph {
 
@@ -80,32 +80,15 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
   if (!a.json.empty()) outputs.push_back({"--json", a.json, false});
   if (!a.output.empty()) outputs.push_back({"-o", a.output});
   detail::check_outputs(outputs);
-  const QualityReport q = quality_report(mesh);
+  QualityOutput run = run_quality(mesh, a.mesh);
+  const QualityReport& q = run.quality;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_table(out, a.mesh, mesh, q);
   out.flush();  // the table before the log lines that follow on stderr
 
-  const bool valid = q.inverted_elements == 0;
   if (!a.json.empty()) {
-    Report r;
-    r.method = "quality";
-    r.dim = mesh.dim;
-    r.order = mesh.order();
-    r.nodes = mesh.n_nodes();
-    r.elements = q.n_cells;
-    r.valid = valid;
-    r.inverted_elements = q.inverted_elements;
-    r.min_shape_quality = q.min_shape_quality;
-    r.min_scaled_jacobian = q.min_scaled_jacobian;
-    r.seconds = seconds;
-    r.converged = valid;
-    r.message = valid ? "all elements valid" : std::to_string(q.inverted_elements) + " inverted elements";
-    nlohmann::ordered_json extra;
-    extra["mesh"] = a.mesh;
-    extra["mean_shape_quality"] = std::isfinite(q.mean_shape_quality) ? nlohmann::ordered_json(q.mean_shape_quality)
-                                                                      : nlohmann::ordered_json(nullptr);
-    extra["shape_histogram"] = q.shape_histogram;
-    write_report(a.json, r, extra);
+    run.report.seconds = seconds;
+    write_report(a.json, run.report, run.extra);
     log_info("wrote " + a.json);
   }
   if (!a.output.empty()) {
@@ -115,7 +98,7 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
     write_mesh(a.output, mesh, options);
     log_info("wrote " + a.output);
   }
-  return valid ? Outcome::GoalReached : Outcome::GoalMissed;
+  return run.report.valid ? Outcome::GoalReached : Outcome::GoalMissed;
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "meshmorph/app/boundary_motion.h"
+#include "meshmorph/methods/boundary_motion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,10 +35,11 @@ Eigen::MatrixXd rotation(const RotateMotion& r, int dim, double t) {
 
 }  // namespace
 
-BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topology& topology) : mesh_(&mesh) {
+BoundaryMotion::BoundaryMotion(const std::vector<BoundaryCondition>& boundary, const std::string& file, const Mesh& mesh,
+                               const Topology& topology)
+    : mesh_(&mesh) {
   const int d = mesh.dim;
   const auto n = static_cast<Eigen::Index>(mesh.n_nodes());
-  const std::string file = c.file.string();
   const double length = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
   std::vector<std::uint8_t> on_boundary(mesh.n_nodes(), 0);
   for (std::int32_t node : boundary_nodes(mesh, topology)) on_boundary[node] = 1;
@@ -52,8 +53,8 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
   owner_.assign(mesh.n_nodes(), -1);
   const std::unordered_map<std::int64_t, std::int32_t> index_of_tag = mesh.node_index_of_tag();
 
-  for (std::size_t e = 0; e < c.boundary.size(); ++e) {
-    const BoundaryCondition& bc = c.boundary[e];
+  for (std::size_t e = 0; e < boundary.size(); ++e) {
+    const BoundaryCondition& bc = boundary[e];
     motions_.push_back(bc.motion);
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(bc.group));
     // An embedded curve or an internal interface: its nodes are free, so the entry would do
@@ -68,7 +69,7 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
       if (owner_[node] >= 0) {
         if ((end_.col(node) - target).norm() > 1e-12 * length)
           throw InputError(file + ": " + bc.key_path + ": node " + std::to_string(mesh.node_tags[node]) +
-                           " is also moved by " + c.boundary[owner_[node]].key_path + " to a different target");
+                           " is also moved by " + boundary[owner_[node]].key_path + " to a different target");
         return;
       }
       owner_[node] = static_cast<std::int32_t>(e);
@@ -123,7 +124,7 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
     if (owner_[i] >= 0) targets_.role[i] = NodeRole::Prescribed;
   targets_.target = end_;
   if (const auto bad = coordinate_range_problem(end_); bad && bad->node >= 0)
-    throw InputError(file + ": " + c.boundary[static_cast<std::size_t>(owner_[static_cast<std::size_t>(bad->node)])].key_path +
+    throw InputError(file + ": " + boundary[static_cast<std::size_t>(owner_[static_cast<std::size_t>(bad->node)])].key_path +
                      ": node " + std::to_string(mesh.node_tags[static_cast<std::size_t>(bad->node)]) + ": the target's " +
                      bad->what);
 
@@ -131,11 +132,11 @@ BoundaryMotion::BoundaryMotion(const CaseFile& c, const Mesh& mesh, const Topolo
   // a fixed wall against a sliding one: sliding would take it off the fixed wall), and those
   // on two slide planes at an angle (below).
   std::vector<std::uint8_t> held(mesh.n_nodes(), 0);
-  for (const BoundaryCondition& bc : c.boundary)
+  for (const BoundaryCondition& bc : boundary)
     if (std::holds_alternative<FixedMotion>(bc.motion))
       for (std::int32_t node : mesh.group_nodes(*mesh.find_group(bc.group))) held[node] = 1;
   // Slide groups: the plane through the group's nodes (least squares), which must fit them.
-  for (const BoundaryCondition& bc : c.boundary) {
+  for (const BoundaryCondition& bc : boundary) {
     if (!std::holds_alternative<SlideMotion>(bc.motion)) continue;
     const std::vector<std::int32_t> nodes = mesh.group_nodes(*mesh.find_group(bc.group));
     Eigen::VectorXd centre = Eigen::VectorXd::Zero(d);

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
-#include "meshmorph/app/commands.h"
+#include "meshmorph/app/quality_case.h"
+#include "meshmorph/cli/commands.h"
 #include "meshmorph/error.h"
-#include "meshmorph/fem/elevate.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/log.h"
 
@@ -21,34 +22,13 @@ struct ConvertArgs {
   bool msh22 = false;
 };
 
-// Checks what can be checked before reading, so that a usage error costs nothing.
-WriteOptions write_options(const ConvertArgs& a) {
-  const std::string ext = std::filesystem::path(a.out).extension().string();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-    throw InputError(a.out + ": unknown output format \"" + ext + "\" (expected .msh, .vtu or .mesh)");
-  if (a.msh22 && ext != ".msh") throw InputError(a.out + ": --msh22 needs a .msh output file");
-  if (a.binary && ext == ".mesh") throw InputError(a.out + ": --binary is not available for Medit .mesh output");
-  WriteOptions options;
-  options.binary = a.binary;
-  if (a.msh22) options.format = MeshFormat::Msh22;
-  return options;
-}
-
 Outcome run_convert(const ConvertArgs& a) {
-  const WriteOptions options = write_options(a);
+  // What can be checked before reading, so that a usage error costs nothing.
+  const WriteOptions options = convert_options(a.out, a.binary, a.msh22);
   Mesh mesh = read_mesh(a.in);
   log_detail(a.in + ": " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_cells()) +
              " cells, order " + std::to_string(mesh.order()));
-  if (a.order > 0 && (a.order != mesh.order() || below_order(mesh, a.order))) {
-    if (a.order < mesh.order())
-      throw InputError(a.in + ": --order " + std::to_string(a.order) + " is below the mesh's order " +
-                       std::to_string(mesh.order()) + " (order can only be raised)");
-    for (const auto& block : mesh.cells)
-      if (a.order > max_order_of(block.type))
-        throw InputError(a.in + ": --order " + std::to_string(a.order) + " is above the highest for " +
-                         std::string(name_of(block.type)) + " cells (" + std::to_string(max_order_of(block.type)) + ")");
-    mesh = elevate_order(mesh, a.order);
-  }
+  mesh = converted(std::move(mesh), a.order, a.in);
   write_mesh(a.out, mesh, options);
   log_info("wrote " + a.out + ": " + std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_cells()) +
            " cells, order " + std::to_string(mesh.order()));

@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "meshmorph/app/commands.h"
+#include "meshmorph/cli/commands.h"
 #include "meshmorph/app/report.h"
 #include "meshmorph/log.h"
 

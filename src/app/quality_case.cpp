@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#include "meshmorph/app/quality_case.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "meshmorph/error.h"
+#include "meshmorph/fem/elevate.h"
+
+namespace meshmorph {
+
+QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh* reference) {
+  if (reference) {
+    bool same = reference->dim == mesh.dim && reference->n_nodes() == mesh.n_nodes() && reference->cells.size() == mesh.cells.size();
+    for (std::size_t i = 0; same && i < mesh.cells.size(); ++i)
+      same = reference->cells[i].type == mesh.cells[i].type && reference->cells[i].order == mesh.cells[i].order &&
+             reference->cells[i].nodes == mesh.cells[i].nodes;
+    if (!same) throw InputError(name + ": reference: not the same cells and nodes as the mesh");
+  }
+  QualityOutput out;
+  const QualityReport& q = out.quality = quality_report(mesh, reference);
+  const bool valid = q.inverted_elements == 0;
+  Report& r = out.report;
+  r.method = "quality";
+  r.dim = mesh.dim;
+  r.order = mesh.order();
+  r.nodes = mesh.n_nodes();
+  r.elements = q.n_cells;
+  r.valid = valid;
+  r.inverted_elements = q.inverted_elements;
+  if (reference) {
+    r.min_quality = q.min_quality;
+    r.mean_quality = q.mean_quality;
+  }
+  r.min_shape_quality = q.min_shape_quality;
+  r.min_scaled_jacobian = q.min_scaled_jacobian;
+  r.converged = valid;
+  r.message = valid ? "all elements valid" : std::to_string(q.inverted_elements) + " inverted elements";
+  out.extra["mesh"] = name;
+  out.extra["mean_shape_quality"] = std::isfinite(q.mean_shape_quality) ? nlohmann::ordered_json(q.mean_shape_quality)
+                                                                        : nlohmann::ordered_json(nullptr);
+  out.extra["shape_histogram"] = q.shape_histogram;
+  return out;
+}
+
+WriteOptions convert_options(const std::string& output, bool binary, bool msh22) {
+  const std::string ext = std::filesystem::path(output).extension().string();
+  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
+    throw InputError(output + ": unknown output format \"" + ext + "\" (expected .msh, .vtu or .mesh)");
+  if (msh22 && ext != ".msh") throw InputError(output + ": --msh22 needs a .msh output file");
+  if (binary && ext == ".mesh") throw InputError(output + ": --binary is not available for Medit .mesh output");
+  WriteOptions options;
+  options.binary = binary;
+  if (msh22) options.format = MeshFormat::Msh22;
+  return options;
+}
+
+Mesh converted(Mesh mesh, int order, const std::string& name) {
+  if (order <= 0 || (order == mesh.order() && !below_order(mesh, order))) return mesh;
+  if (order < mesh.order())
+    throw InputError(name + ": --order " + std::to_string(order) + " is below the mesh's order " +
+                     std::to_string(mesh.order()) + " (order can only be raised)");
+  for (const auto& block : mesh.cells)
+    if (order > max_order_of(block.type))
+      throw InputError(name + ": --order " + std::to_string(order) + " is above the highest for " +
+                       std::string(name_of(block.type)) + " cells (" + std::to_string(max_order_of(block.type)) + ")");
+  return elevate_order(mesh, order);
+}
+
+}  // namespace meshmorph

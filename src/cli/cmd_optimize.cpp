@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// `meshmorph optimize MESH | CASE.json`: TMOP mesh optimization with a fixed or sliding boundary.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include "cli/detail/output_files.h"
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/app/optimize_case.h"
+#include "meshmorph/cli/commands.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph {
+namespace {
+
+struct OptimizeArgs {
+  std::string input;  // a mesh or a case file (.json)
+  std::string output, report, metric, target, boundary, solver;
+};
+
+Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
+  Mesh mesh = read_mesh(c ? c->mesh : std::filesystem::path(a.input));
+  // The whole run, its summary included, on the threads optimize picks for this size.
+  threads = optimize_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
+  if (threads > 0) omp_set_num_threads(threads);
+  const OptimizeRunner runner(c ? *c : bare_case(a.input), std::move(mesh), threads,
+                              OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
+  const auto output = detail::output_path(a.output, c ? &*c : nullptr, a.input, "_optimized");
+  const auto report_path = detail::report_path(a.report, c ? &*c : nullptr);
+  detail::check_outputs(c ? &*c : nullptr, output, report_path);  // every input is read by now
+
+  RunOutput run = runner.run();
+  detail::write_run(run, output, report_path, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
+
+  const nlohmann::ordered_json& extra = run.extra;
+  const std::size_t inverted = runner.initial_inverted();
+  const std::string solver = extra["solver"].get<std::string>();
+  char line[240];
+  out << "optimize " << a.input << " (" << extra["metric"].get<std::string>() << ", target "
+      << extra["target"].get<std::string>() << ", boundary " << runner.settings().boundary << ")\n"
+      << detail::mesh_line(runner.input()) << "; " << runner.constraints().slide_nodes << " sliding nodes"
+      << (inverted ? "; " + std::to_string(inverted) + " inverted, untangled first" : std::string()) << "\n";
+  std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld %s (%s)\n",
+                run.report.iterations->newton - extra["untangle_newton"].get<long long>(), run.report.iterations->linear,
+                solver == "matrix-free" ? "CG iterations" : "linear solves", solver.empty() ? "none" : solver.c_str());
+  out << line;
+  std::snprintf(line, sizeof line, "quality  F %.6g -> %.6g; mu min/mean/max %.4g / %.4g / %.4g; min det J %.3g -> %.3g; inverted %zu\n",
+                extra["energy_initial"].get<double>(), extra["energy_final"].get<double>(), extra["mu_min"].get<double>(),
+                extra["mu_mean"].get<double>(), extra["mu_max"].get<double>(), extra["min_det_initial"].get<double>(),
+                extra["min_det_final"].get<double>(), run.quality.inverted_elements);
+  out << line;
+  return detail::print_result(out, run.report, output);
+}
+
+}  // namespace
+
+void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
+  auto args = std::make_shared<OptimizeArgs>();
+  CLI::App* cmd = app.add_subcommand("optimize", "TMOP mesh optimization with a fixed or sliding boundary (paper 003 §2.2)");
+  cmd->add_option("INPUT", args->input, "Mesh, or case file (JSON, docs/case-file.md)")->required();
+  cmd->add_option("-o,--output", args->output, "Output mesh (default: the case's \"output\"; for a mesh, NAME_optimized.EXT)")
+      ->type_name("OUT");
+  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  cmd->add_option("--metric", args->metric, "mu2 (2D) | mu303 (3D) | mu77 | mu80 | distortion | distortion2")
+      ->check(CLI::IsMember({"mu2", "mu303", "mu77", "mu80", "distortion", "distortion2"}));
+  cmd->add_option("--target", args->target, "ideal (default) | input | ideal_unit (MFEM's -tid 1)")
+      ->check(CLI::IsMember({"ideal", "input", "ideal_unit"}));
+  cmd->add_option("--boundary", args->boundary,
+                  "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
+      ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
+  cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free")
+      ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free"}));
+  cmd->callback([args, &run, &threads] {
+    run = [args, &threads](std::ostream& out) { return run_optimize(*args, threads, out); };
+  });
+}
+
+}  // namespace meshmorph

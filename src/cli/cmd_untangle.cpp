@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// `meshmorph untangle CASE.json | MESH`: simultaneous untangling and smoothing (paper 001).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/detail/output_files.h"
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/app/untangle_case.h"
+#include "meshmorph/cli/commands.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph {
+namespace {
+
+struct UntangleArgs {
+  std::string input;  // a case file (.json) or a mesh
+  std::string output;
+  std::string report;
+};
+
+Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
+  const CaseFile& run_case = c ? *c : bare_case(a.input);
+  UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
+  const auto output = detail::output_path(a.output, c ? &*c : nullptr, a.input, "_untangled");
+  const auto report_path = detail::report_path(a.report, c ? &*c : nullptr);
+  detail::check_outputs(c ? &*c : nullptr, output, report_path);
+
+  int step_files = 0;
+  RunOutput run = runner.run([&](int step, const Mesh& mesh) {
+    if (c && c->output_each_step && output) detail::write_step_mesh(*output, step, mesh, step_files);
+  });
+  detail::write_run(run, output, report_path, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
+
+  const IterationCounts& counts = *run.report.iterations;
+  const int steps = run.extra["steps"].get<int>();
+  char line[200];
+  out << "untangle " << a.input << " (reference " << run.extra["reference"].get<std::string>() << ")\n"
+      << detail::mesh_line(runner.input()) << "; " << run.extra["initial_inverted_elements"].get<std::size_t>()
+      << " inverted once the boundary is placed\n";
+  std::snprintf(line, sizeof line, "work     %d step%s, %lld Newton steps, %lld delta updates, %lld linear solves\n",
+                steps, steps > 1 ? "s" : "", counts.newton, counts.outer, counts.linear);
+  out << line;
+  std::snprintf(line, sizeof line, "quality  q_min (eq. 3) %.4f, min shape quality %.4f; inverted %zu\n",
+                run.extra["min_edge_quality"].get<double>(), run.quality.min_shape_quality, run.quality.inverted_elements);
+  out << line;
+  return detail::print_result(out, run.report, output, step_files);
+}
+
+}  // namespace
+
+void add_untangle_command(CLI::App& app, Command& run, const int& threads) {
+  auto args = std::make_shared<UntangleArgs>();
+  CLI::App* cmd = app.add_subcommand("untangle", "Untangle and smooth a mesh after a boundary motion (paper 001)");
+  cmd->add_option("INPUT", args->input, "Case file (JSON, docs/case-file.md) or a mesh whose boundary stays fixed")->required();
+  cmd->add_option("-o,--output", args->output, "Output mesh (default: the case's \"output\"; for a mesh, NAME_untangled.EXT)")
+      ->type_name("OUT");
+  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  cmd->callback([args, &run, &threads] {
+    run = [args, &threads](std::ostream& out) { return run_untangle(*args, threads, out); };
+  });
+}
+
+}  // namespace meshmorph

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "meshmorph/app/case_file.h"
+#include "meshmorph/app/report.h"
+#include "meshmorph/app/run_output.h"
+#include "meshmorph/cli/commands.h"
+
+namespace meshmorph::detail {
+
+/// `out` with the step number before the extension: out_0003.vtu (`output_each_step`).
+std::filesystem::path step_path(const std::filesystem::path& out, int step);
+
+/// A file a command writes: the key or option that gives it (for messages), its path, and
+/// whether it may replace a file the run reads: only a mesh the user names (DESIGN §3.1), not
+/// a report (a typo would put JSON over the mesh it describes) nor a file the command names
+/// itself (the step files of `output_each_step`).
+struct OutputFile {
+  std::string label;
+  std::filesystem::path path;
+  bool may_replace_input = true;
+};
+
+/// Throws InputError, before anything is written, where an output is a folder or its folder
+/// does not exist, two outputs share a file (the later would replace the earlier) or an
+/// output that may not replace an input is a file the run read: DESIGN §3.1 lets an input be
+/// replaced only where the user names it as the output.
+void check_outputs(const std::vector<OutputFile>& outputs);
+
+/// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
+/// step meshes) and its `report`, labelled by the case file's keys, or by the command-line
+/// options where `c` is null (a bare mesh).
+void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
+                   const std::optional<std::filesystem::path>& report);
+
+/// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
+/// method writes no mesh otherwise, DESIGN §3.1).
+void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
+                       const std::optional<std::filesystem::path>& output);
+
+/// Writes increment `step` of a series (`output_each_step`) at step_path(output, step) and
+/// counts it in `written`, for the summary.
+void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written);
+
+/// The last lines of a method's summary (result, what was written, time) and its outcome.
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
+                     int step_files = 0);
+
+/// The case file `input` names (a .json path), or none for a bare mesh.
+std::optional<CaseFile> case_or_mesh(const std::string& input);
+
+/// The output path of a method command: -o, else the case's "output"; for a bare mesh
+/// (no case) NAME<suffix>.EXT beside it, never over it, where `suffix` is given.
+std::optional<std::filesystem::path> output_path(const std::string& option, const CaseFile* c, const std::string& input,
+                                                 const std::string& suffix = "");
+/// The report path: --report, else the case's "report".
+std::optional<std::filesystem::path> report_path(const std::string& option, const CaseFile* c);
+
+/// Writes a run's mesh (write_result_mesh) and report (write_report, with `case` and
+/// `seconds` filled) where they are asked for.
+void write_run(RunOutput& run, const std::optional<std::filesystem::path>& output,
+               const std::optional<std::filesystem::path>& report, const std::optional<std::string>& case_file, double seconds);
+
+/// "mesh     2D, 1265 nodes, 2304 cells, order 1": the line every method's summary starts with.
+std::string mesh_line(const Mesh& mesh);
+
+}  // namespace meshmorph::detail

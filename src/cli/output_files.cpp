@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+#include "cli/detail/output_files.h"
+
+#include <cstdio>
+#include <system_error>
+
+#include <omp.h>
+
+#include "meshmorph/error.h"
+#include "meshmorph/io/input_files.h"
+#include "meshmorph/io/mesh_io.h"
+
+namespace meshmorph::detail {
+
+std::filesystem::path step_path(const std::filesystem::path& out, int step) {
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "_%04d", step);
+  return out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+}
+
+void check_outputs(const std::vector<OutputFile>& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputFile& o = outputs[i];
+    // Where a later output cannot be written, an earlier one must not be either.
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.path, ec))
+      throw InputError(o.label + ": " + o.path.string() + " is a folder, not a file");
+    const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
+    if (!std::filesystem::is_directory(folder, ec))
+      throw InputError(o.label + ": " + o.path.string() + ": no folder " + folder.string());
+    if (const auto input = o.may_replace_input ? std::nullopt : input_file_at(o.path))
+      throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
+                       "), which only an output mesh you name yourself may replace");
+    for (std::size_t j = 0; j < i; ++j)
+      if (same_file(outputs[j].path, o.path))
+        throw InputError(o.label + ": " + o.path.string() + " is also the file of " + outputs[j].label +
+                         ": each output needs a path of its own");
+  }
+}
+
+void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
+                   const std::optional<std::filesystem::path>& report) {
+  const std::string where = c ? c->file.string() + ": " : std::string();
+  std::vector<OutputFile> outputs;
+  // The command line's -o may name the output that the case leaves out.
+  if (c && c->output_each_step && !output)
+    throw InputError(where + "output_each_step: needs \"output\" (or -o) to name the step files");
+  if (output) {
+    outputs.push_back({where + (c ? "output" : "-o"), *output});
+    if (c && c->output_each_step)
+      for (int s = 1; s < c->steps; ++s)
+        outputs.push_back({where + "output_each_step (step " + std::to_string(s) + ")", step_path(*output, s), false});
+  }
+  if (report) outputs.push_back({where + (c ? "report" : "--report"), *report, false});
+  check_outputs(outputs);
+}
+
+void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
+                       const std::optional<std::filesystem::path>& output) {
+  if (!report.converged || !output) return;
+  WriteOptions wo;
+  if (!q.quality.empty()) wo.cell_data[std::string(kQualityField)] = q.quality;
+  wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
+  write_mesh(*output, moved, wo);
+}
+
+void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written) {
+  write_mesh(step_path(output, step), mesh);
+  ++written;
+}
+
+Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
+                     int step_files) {
+  out << "result   " << report.message << "\n";
+  if (report.converged && output) out << "wrote    " << output->string() << "\n";
+  else if (output && step_files > 0)
+    out << "wrote    no result mesh (the goal was not reached); the " << step_files << " increment"
+        << (step_files > 1 ? "s" : "") << " before: " << step_path(*output, 1).string()
+        << (step_files > 1 ? " ... " + step_path(*output, step_files).string() : std::string()) << "\n";
+  else if (output) out << "wrote    no mesh (the goal was not reached)\n";
+  char line[64];
+  const int threads = omp_get_max_threads();  // the run's (use_method_threads)
+  std::snprintf(line, sizeof line, "time     %.3f s on %d thread%s\n", report.seconds, threads, threads == 1 ? "" : "s");
+  out << line;
+  return report.converged ? Outcome::GoalReached : Outcome::GoalMissed;
+}
+
+std::optional<CaseFile> case_or_mesh(const std::string& input) {
+  if (std::filesystem::path(input).extension() == ".json") return read_case_file(input);
+  return std::nullopt;
+}
+
+std::optional<std::filesystem::path> output_path(const std::string& option, const CaseFile* c, const std::string& input,
+                                                 const std::string& suffix) {
+  if (!option.empty()) return std::filesystem::path(option);
+  if (c) return c->output;
+  if (suffix.empty()) return std::nullopt;
+  const std::filesystem::path in(input);
+  return in.parent_path() / (in.stem().string() + suffix + in.extension().string());
+}
+
+std::optional<std::filesystem::path> report_path(const std::string& option, const CaseFile* c) {
+  if (!option.empty()) return std::filesystem::path(option);
+  if (c) return c->report;
+  return std::nullopt;
+}
+
+void write_run(RunOutput& run, const std::optional<std::filesystem::path>& output,
+               const std::optional<std::filesystem::path>& report, const std::optional<std::string>& case_file, double seconds) {
+  run.report.case_file = case_file;
+  run.report.seconds = seconds;
+  write_result_mesh(run.report, run.moved, run.quality, output);
+  if (report) write_report(*report, run.report, run.extra);
+}
+
+std::string mesh_line(const Mesh& mesh) {
+  return "mesh     " + std::to_string(mesh.dim) + "D, " + std::to_string(mesh.n_nodes()) + " nodes, " +
+         std::to_string(mesh.n_cells()) + " cells, order " + std::to_string(mesh.order());
+}
+
+}  // namespace meshmorph::detail
