@@ -30,21 +30,25 @@ BoundaryTargets with_targets(BoundaryTargets bc, const Eigen::MatrixXd& target) 
   return bc;
 }
 
-QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc) {
-  QualityReport q = quality_report(moved, input);
-  const auto [err_max, err_l2] = boundary_errors(bc, moved.x);
-  report.dim = moved.dim;
-  report.order = moved.order();
-  report.nodes = moved.n_nodes();
-  report.elements = moved.n_cells();
+void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q) {
+  report.dim = mesh.dim;
+  report.order = mesh.order();
+  report.nodes = mesh.n_nodes();
+  report.elements = mesh.n_cells();
   report.inverted_elements = q.inverted_elements;
   report.valid = q.inverted_elements == 0;
-  if (input) {
+  if (q.has_input) {
     report.min_quality = q.min_quality;
     report.mean_quality = q.mean_quality;
   }
   report.min_shape_quality = q.min_shape_quality;
   report.min_scaled_jacobian = q.min_scaled_jacobian;
+}
+
+QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc) {
+  QualityReport q = quality_report(moved, input);
+  const auto [err_max, err_l2] = boundary_errors(bc, moved.x);
+  fill_measures(report, moved, q);
   report.boundary_error_max = err_max;
   report.boundary_error_l2 = err_l2;
   if (!report.valid) {

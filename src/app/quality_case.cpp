@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "app/detail/method_output.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 
@@ -22,18 +23,7 @@ QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh*
   const bool valid = q.inverted_elements == 0;
   Report& r = out.report;
   r.method = "quality";
-  r.dim = mesh.dim;
-  r.order = mesh.order();
-  r.nodes = mesh.n_nodes();
-  r.elements = q.n_cells;
-  r.valid = valid;
-  r.inverted_elements = q.inverted_elements;
-  if (reference) {
-    r.min_quality = q.min_quality;
-    r.mean_quality = q.mean_quality;
-  }
-  r.min_shape_quality = q.min_shape_quality;
-  r.min_scaled_jacobian = q.min_scaled_jacobian;
+  detail::fill_measures(r, mesh, q);
   r.converged = valid;
   r.message = valid ? "all elements valid" : std::to_string(q.inverted_elements) + " inverted elements";
   out.extra["mesh"] = name;

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/fit_case.h"
@@ -16,27 +17,21 @@
 namespace meshmorph {
 namespace {
 
-struct FitArgs {
-  std::string case_file;
-  std::string output;
-  std::string report;
-};
-
-Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
+Outcome run_fit(const detail::MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
-  const CaseFile c = read_case_file(a.case_file);
+  const CaseFile c = read_case_file(a.input);
   const FitRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = detail::output_path(a.output, &c, a.case_file);
+  const auto output = detail::output_path(a.output, &c, a.input);
   const auto report_path = detail::report_path(a.report, &c);
   detail::check_outputs(&c, output, report_path);
 
   RunOutput run = runner.run();
-  detail::write_run(run, output, report_path, a.case_file, seconds_since(start));
+  detail::write_run(run, output, report_path, a.input, seconds_since(start));
 
   const Report& report = run.report;
   const FitSetup& setup = runner.setup();
   char line[200];
-  out << "fit      " << a.case_file << "\n"
+  out << "fit      " << a.input << "\n"
       << detail::mesh_line(setup.mesh) << "; " << run.extra["fitted_nodes"].get<std::size_t>() << " fitted nodes"
       << (setup.split_cells ? ", " + std::to_string(setup.split_cells) + " cells split" : std::string()) << "\n";
   std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld weight increases, %lld linear solves\n",
@@ -54,14 +49,11 @@ Outcome run_fit(const FitArgs& a, int threads, std::ostream& out) {
 }  // namespace
 
 void add_fit_command(CLI::App& app, Command& run, const int& threads) {
-  auto args = std::make_shared<FitArgs>();
-  CLI::App* cmd = app.add_subcommand("fit", "Fit the mesh's interface or boundary to a level set (paper 003)");
-  cmd->add_option("CASE", args->case_file, "Case file (JSON, see docs/case-file.md)")->required();
-  cmd->add_option("-o,--output", args->output, "Output mesh (overrides the case's \"output\")")->type_name("OUT");
-  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
-  cmd->callback([args, &run, &threads] {
-    run = [args, &threads](std::ostream& out) { return run_fit(*args, threads, out); };
-  });
+  detail::add_method_command(app, run, threads,
+                             {"fit", "Fit the mesh's interface or boundary to a level set (paper 003)", "CASE",
+                              "Case file (JSON, see docs/case-file.md)",
+                              "Output mesh (overrides the case's \"output\")"},
+                             std::make_shared<detail::MethodArgs>(), &run_fit);
 }
 
 }  // namespace meshmorph

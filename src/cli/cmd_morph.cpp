@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/morph_case.h"
@@ -17,17 +18,11 @@
 namespace meshmorph {
 namespace {
 
-struct MorphArgs {
-  std::string case_file;
-  std::string output;
-  std::string report;
-};
-
-Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
+Outcome run_morph(const detail::MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
-  const CaseFile c = read_case_file(a.case_file);
+  const CaseFile c = read_case_file(a.input);
   MorphRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = detail::output_path(a.output, &c, a.case_file);
+  const auto output = detail::output_path(a.output, &c, a.input);
   const auto report_path = detail::report_path(a.report, &c);
   detail::check_outputs(&c, output, report_path);
 
@@ -35,11 +30,11 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {
     if (c.output_each_step && output) detail::write_step_mesh(*output, step, mesh, step_files);
   });
-  detail::write_run(run, output, report_path, a.case_file, seconds_since(start));
+  detail::write_run(run, output, report_path, a.input, seconds_since(start));
 
   const Report& report = run.report;
   const std::size_t guarded = run.extra.value("guarded_cells", std::size_t{0});
-  out << "morph    " << a.case_file << " (" << report.method << ")\n" << detail::mesh_line(runner.input()) << "\n";
+  out << "morph    " << a.input << " (" << report.method << ")\n" << detail::mesh_line(runner.input()) << "\n";
   out << "work     " << report.iterations->outer << " AL iterations, " << report.iterations->nonlinear
       << " nonlinear solves, " << report.iterations->newton << " Newton steps, " << report.iterations->linear
       << " linear solves" << (run.krylov > 0 ? " (" + std::to_string(run.krylov) + " CG iterations)" : std::string())
@@ -57,14 +52,11 @@ Outcome run_morph(const MorphArgs& a, int threads, std::ostream& out) {
 }  // namespace
 
 void add_morph_command(CLI::App& app, Command& run, const int& threads) {
-  auto args = std::make_shared<MorphArgs>();
-  CLI::App* cmd = app.add_subcommand("morph", "Move the mesh to follow a prescribed boundary motion (paper 000)");
-  cmd->add_option("CASE", args->case_file, "Case file (JSON, see docs/case-file.md)")->required();
-  cmd->add_option("-o,--output", args->output, "Output mesh (overrides the case's \"output\")")->type_name("OUT");
-  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
-  cmd->callback([args, &run, &threads] {
-    run = [args, &threads](std::ostream& out) { return run_morph(*args, threads, out); };
-  });
+  detail::add_method_command(app, run, threads,
+                             {"morph", "Move the mesh to follow a prescribed boundary motion (paper 000)", "CASE",
+                              "Case file (JSON, see docs/case-file.md)",
+                              "Output mesh (overrides the case's \"output\")"},
+                             std::make_shared<detail::MethodArgs>(), &run_morph);
 }
 
 }  // namespace meshmorph

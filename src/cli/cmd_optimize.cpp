@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <omp.h>
 
+#include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/optimize_case.h"
@@ -19,9 +20,8 @@
 namespace meshmorph {
 namespace {
 
-struct OptimizeArgs {
-  std::string input;  // a mesh or a case file (.json)
-  std::string output, report, metric, target, boundary, solver;
+struct OptimizeArgs : detail::MethodArgs {
+  std::string metric, target, boundary, solver;
 };
 
 Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
@@ -64,11 +64,12 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
 
 void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   auto args = std::make_shared<OptimizeArgs>();
-  CLI::App* cmd = app.add_subcommand("optimize", "TMOP mesh optimization with a fixed or sliding boundary (paper 003 §2.2)");
-  cmd->add_option("INPUT", args->input, "Mesh, or case file (JSON, docs/case-file.md)")->required();
-  cmd->add_option("-o,--output", args->output, "Output mesh (default: the case's \"output\"; for a mesh, NAME_optimized.EXT)")
-      ->type_name("OUT");
-  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  CLI::App* cmd = detail::add_method_command(
+      app, run, threads,
+      {"optimize", "TMOP mesh optimization with a fixed or sliding boundary (paper 003 §2.2)", "INPUT",
+       "Mesh, or case file (JSON, docs/case-file.md)",
+       "Output mesh (default: the case's \"output\"; for a mesh, NAME_optimized.EXT)"},
+      args, &run_optimize);
   cmd->add_option("--metric", args->metric, "mu2 (2D) | mu303 (3D) | mu77 | mu80 | distortion | distortion2")
       ->check(CLI::IsMember({"mu2", "mu303", "mu77", "mu80", "distortion", "distortion2"}));
   cmd->add_option("--target", args->target, "ideal (default) | input | ideal_unit (MFEM's -tid 1)")
@@ -78,9 +79,6 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
       ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
   cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free")
       ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free"}));
-  cmd->callback([args, &run, &threads] {
-    run = [args, &threads](std::ostream& out) { return run_optimize(*args, threads, out); };
-  });
 }
 
 }  // namespace meshmorph

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/untangle_case.h"
@@ -17,13 +18,7 @@
 namespace meshmorph {
 namespace {
 
-struct UntangleArgs {
-  std::string input;  // a case file (.json) or a mesh
-  std::string output;
-  std::string report;
-};
-
-Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
+Outcome run_untangle(const detail::MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
   const CaseFile& run_case = c ? *c : bare_case(a.input);
@@ -56,15 +51,11 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
 }  // namespace
 
 void add_untangle_command(CLI::App& app, Command& run, const int& threads) {
-  auto args = std::make_shared<UntangleArgs>();
-  CLI::App* cmd = app.add_subcommand("untangle", "Untangle and smooth a mesh after a boundary motion (paper 001)");
-  cmd->add_option("INPUT", args->input, "Case file (JSON, docs/case-file.md) or a mesh whose boundary stays fixed")->required();
-  cmd->add_option("-o,--output", args->output, "Output mesh (default: the case's \"output\"; for a mesh, NAME_untangled.EXT)")
-      ->type_name("OUT");
-  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
-  cmd->callback([args, &run, &threads] {
-    run = [args, &threads](std::ostream& out) { return run_untangle(*args, threads, out); };
-  });
+  detail::add_method_command(app, run, threads,
+                             {"untangle", "Untangle and smooth a mesh after a boundary motion (paper 001)", "INPUT",
+                              "Case file (JSON, docs/case-file.md) or a mesh whose boundary stays fixed",
+                              "Output mesh (default: the case's \"output\"; for a mesh, NAME_untangled.EXT)"},
+                             std::make_shared<detail::MethodArgs>(), &run_untangle);
 }
 
 }  // namespace meshmorph

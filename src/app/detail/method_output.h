@@ -22,6 +22,10 @@ std::pair<double, double> boundary_errors(const BoundaryTargets& bc, const Eigen
 /// `bc` with the targets of its Prescribed nodes taken from `target` (d × n).
 BoundaryTargets with_targets(BoundaryTargets bc, const Eigen::MatrixXd& target);
 
+/// The mesh and quality fields of a report (DESIGN §3.3) from `q`, the measures of `mesh`:
+/// min_quality and mean_quality only where q was taken against an input.
+void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q);
+
 /// Measures `moved` and fills the mesh, quality and boundary fields of a method's report
 /// (DESIGN §3.3): quality against `input` unless it is null. An invalid result is not
 /// converged, whatever the method said, and the message says how many cells are inverted.

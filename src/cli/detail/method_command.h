@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "meshmorph/cli/commands.h"
+
+namespace meshmorph::detail {
+
+/// What every method subcommand takes: its input and the -o and --report overrides.
+struct MethodArgs {
+  std::string input;   ///< CASE.json, or (untangle, optimize) a mesh
+  std::string output;  ///< -o: over the case's "output"
+  std::string report;  ///< --report: over the case's "report"
+};
+
+/// The words of a method subcommand in --help.
+struct MethodHelp {
+  const char* name;
+  const char* description;
+  const char* input;        ///< "CASE" or "INPUT"
+  const char* input_help;
+  const char* output_help;
+};
+
+/// Adds the subcommand: its input, -o and --report bound to `args` (a MethodArgs, or one
+/// that adds the subcommand's own options); when it is chosen, `run` calls `body` with the
+/// common --threads value. Returns it for more options.
+template <class Args>
+CLI::App* add_method_command(CLI::App& app, Command& run, const int& threads, const MethodHelp& help,
+                             std::shared_ptr<Args> args, Outcome (*body)(const Args&, int, std::ostream&)) {
+  CLI::App* cmd = app.add_subcommand(help.name, help.description);
+  cmd->add_option(help.input, args->input, help.input_help)->required();
+  cmd->add_option("-o,--output", args->output, help.output_help)->type_name("OUT");
+  cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  cmd->callback([args, body, &run, &threads] {
+    run = [args, body, &threads](std::ostream& out) { return body(*args, threads, out); };
+  });
+  return cmd;
+}
+
+}  // namespace meshmorph::detail
