@@ -125,7 +125,7 @@ TEST(BadInput, UnknownExtensionAndMissingFile) {
   EXPECT_THROW(read_mesh(fs::path(MESHMORPH_TEST_DATA) / "bad" / "does_not_exist.msh"), IoError);
 }
 
-// A folder opens as a stream whose size is LLONG_MAX: it used to end in std::bad_alloc.
+// A folder opens as a stream whose size is LLONG_MAX: reading it must not end in std::bad_alloc.
 TEST(BadInput, FolderIsAnIoErrorNamingIt) {
   const fs::path dir = fs::temp_directory_path() / ("meshmorph_folder_" + std::to_string(::getpid()));
   for (const char* name : {"a.msh", "a.vtu", "a.mesh"}) {

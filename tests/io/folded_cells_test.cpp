@@ -12,7 +12,7 @@ namespace meshmorph {
 namespace {
 
 // Cells that QA found folded between the validity samples (det A < 0 on part of each, by
-// dense sampling; quality used to call them valid): every sample is positive, and the
+// dense sampling; a test at the samples alone calls them valid): every sample is positive, and the
 // Bernstein bounds find the fold.
 TEST(FoldedCells, BernsteinBoundsCatchFoldsBetweenTheSamples) {
   for (const char* name : {"triangle_3", "triangle_4", "quadrilateral_3", "tetrahedron_3", "hexahedron_2"}) {

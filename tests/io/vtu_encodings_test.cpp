@@ -209,7 +209,7 @@ std::string triangle_vtu(const std::string& stored, Mode mode, bool header64, bo
 
 // The sizes a header announces are checked before anything is allocated: against the bytes the
 // array needs, and against what its zlib blocks can inflate to (1032:1 at most). A 4 GB block
-// in a 1 kB file used to be allocated, a 2^40-byte one threw std::bad_alloc.
+// in a 1 kB file is refused before it is allocated, and so is a 2^40-byte one.
 TEST(VtuEncodings, HeaderSizesAreCheckedBeforeAllocating) {
   const std::string points = bytes_of<double>("0 0 0 1 0 0 0 1 0");  // 72 bytes
   uLongf size = compressBound(points.size());

@@ -388,7 +388,7 @@ TEST(Morph, AnUntanglePassFinishesASqueezeWhereTheAugmentedLagrangianStalls) {
 }
 
 // Cells with no free node are what the motion makes them: one it inverts stops the run
-// before any iteration, naming the cause (it used to stall after six penalty rises).
+// before any iteration, naming the cause (rather than stalling after six penalty rises).
 TEST(Morph, StopsAtOnceWhenTheMotionInvertsACellWithNoFreeNode) {
   const Mesh mesh = structured_mesh(ElementType::Triangle, 1, 3);
   const Topology topo = build_topology(mesh);
