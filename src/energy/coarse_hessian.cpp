@@ -11,28 +11,23 @@
 namespace meshmorph {
 namespace {
 
-using detail::k_packed;
-using detail::k_sq;
-using detail::packed_index;
-using detail::point_entries;
-
 // Ac += Σ_q G_q K_q^{kl} G_qᵀ over the pairs k ≤ l of the cell's points (the blocks (k, l)
 // of the local coarse matrix, corners × corners, v·d + k order), from the hats' gradients G_q
 // (C × d) and the packed K_q; C fixed at compile time (8: hexahedra) or at run time (0).
 template <int d, int C_>
 void coarse_points(const std::vector<Eigen::MatrixXd>& gradients, int corners, const float* K, bool lanes, std::size_t c,
                    int Q, Eigen::MatrixXd& Ac) {
-  constexpr int dd = k_sq(d);
+  constexpr int dd = detail::k_sq(d);
   constexpr int C = C_ > 0 ? C_ : Eigen::Dynamic;
   constexpr int max_c = C_ > 0 ? C_ : 8;  // hexahedra have the most corners
   using Grad = Eigen::Matrix<double, C, d, Eigen::ColMajor, max_c, d>;
   using Block = Eigen::Matrix<double, C, C, Eigen::ColMajor, max_c, max_c>;
-  std::array<Block, k_packed(d)> blocks;
+  std::array<Block, detail::k_packed(d)> blocks;
   for (Block& b : blocks) b.setZero(corners, corners);
   for (int q = 0; q < Q; ++q) {
-    const auto [entry, stride] = point_entries<d>(K, lanes, c, Q, q);
+    const auto [entry, stride] = detail::point_entries<d>(K, lanes, c, Q, q);
     const auto Kq = [&](int i, int j) {  // K_q(i, j) from the packed upper triangle
-      return static_cast<double>(entry[(i <= j ? packed_index(dd, i, j) : packed_index(dd, j, i)) * stride]);
+      return static_cast<double>(entry[(i <= j ? detail::packed_index(dd, i, j) : detail::packed_index(dd, j, i)) * stride]);
     };
     const Grad G = gradients[static_cast<std::size_t>(q)];
     for (int k = 0, o = 0; k < d; ++k)
@@ -80,7 +75,7 @@ Eigen::SparseMatrix<double> EnergyAssembler<d>::coarse_hessian(const HessianActi
           // R_eᵀ H_e R_e with H_e component-major (k·n + a) and R_e the hats at the nodes.
           const int dn = d * n;
           Ed.resize(dn, dn);
-          const float* packed = E.data() + c * static_cast<std::size_t>(k_packed(dn));
+          const float* packed = E.data() + c * static_cast<std::size_t>(detail::k_packed(dn));
           for (int i = 0; i < dn; ++i)
             for (int j = i; j < dn; ++j) Ed(i, j) = Ed(j, i) = *packed++;
           for (int l = 0; l < d; ++l) {

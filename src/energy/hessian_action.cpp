@@ -16,13 +16,6 @@
 namespace meshmorph {
 namespace {
 
-using detail::HexScratch;
-using detail::k_lanes;
-using detail::k_packed;
-using detail::k_sq;
-using detail::packed_product;
-using detail::point_entries;
-
 // Cells per dense product of apply_hessian: 16 cells give the products 3·16 rows in 3D, enough
 // for the blocked kernel to amortise the packing of ∇N.
 constexpr int k_batch = 16;
@@ -39,7 +32,7 @@ const TensorGrid* tensor_factors(const CellBlock& block, const ShapeTable& table
 template <int d>
 bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::MatrixXd& x, HessianMode mode, int threads,
                                          HessianAction<d>& out) const {
-  constexpr int dd = k_sq(d);
+  constexpr int dd = detail::k_sq(d);
   using Hess = Eigen::Matrix<double, dd, dd>;
   out.K_.resize(mesh_->cells.size());
   out.element_.resize(mesh_->cells.size());
@@ -61,7 +54,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
       // a P3 tetrahedron at degree 8.
       K.clear();
       const int dn = d * n;
-      E.resize(block.n_cells() * static_cast<std::size_t>(k_packed(dn)));
+      E.resize(block.n_cells() * static_cast<std::size_t>(detail::k_packed(dn)));
 #pragma omp parallel for num_threads(resolve_threads(threads)) schedule(static) reduction(&& : finite)
       for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
         detail::NodalMatrix<d> X(d, n);
@@ -73,7 +66,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
           finite = 0;
           continue;
         }
-        float* packed = E.data() + static_cast<std::size_t>(c) * k_packed(dn);
+        float* packed = E.data() + static_cast<std::size_t>(c) * detail::k_packed(dn);
         for (int i = 0; i < dn; ++i)
           for (int j = i; j < dn; ++j) *packed++ = static_cast<float>(scratch.H(i, j));  // exactly symmetric (complete_symmetric)
       }
@@ -82,8 +75,8 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
     E.clear();
     // Cells in batches of k_lanes, interleaved, where hex_kernel takes them (detail/hessian_kernels.h).
     const bool lanes = out.tensor_[bi] != nullptr;
-    const std::size_t padded = lanes ? (block.n_cells() + k_lanes - 1) / k_lanes * k_lanes : block.n_cells();
-    K.assign(padded * static_cast<std::size_t>(Q) * k_packed(dd), 0.0f);
+    const std::size_t padded = lanes ? (block.n_cells() + detail::k_lanes - 1) / detail::k_lanes * detail::k_lanes : block.n_cells();
+    K.assign(padded * static_cast<std::size_t>(Q) * detail::k_packed(dd), 0.0f);
     const TensorGrid* grid = table.tensor && table.dim == d ? table.tensor.get() : nullptr;
 #pragma omp parallel num_threads(resolve_threads(threads)) reduction(&& : finite)
     {
@@ -122,7 +115,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
                 for (int k = 0; k < d; ++k) M(k + d * j, k + d * m) = W_inv(j, m);
             Kq = t[q].weight * (M * Hq * M.transpose());
           }
-          const auto [packed, stride] = point_entries<d>(K.data(), lanes, static_cast<std::size_t>(c), Q, q);
+          const auto [packed, stride] = detail::point_entries<d>(K.data(), lanes, static_cast<std::size_t>(c), Q, q);
           for (int i = 0, e = 0; i < dd; ++i)
             for (int j = i; j < dd; ++j, ++e) packed[e * stride] = static_cast<float>(0.5 * (Kq(i, j) + Kq(j, i)));
         }
@@ -135,7 +128,7 @@ bool EnergyAssembler<d>::prepare_hessian(const Metric<d>& metric, const Eigen::M
 template <int d>
 void EnergyAssembler<d>::apply_hessian(HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
                                        int threads) const {
-  constexpr int dd = k_sq(d);
+  constexpr int dd = detail::k_sq(d);
   MESHMORPH_CHECK(action.K_.size() == mesh_->cells.size() && v.size() == static_cast<Eigen::Index>(dofs_->n_free()),
                   "EnergyAssembler::apply_hessian: the action or v does not fit");
   std::vector<double>& local = action.local_;
@@ -145,38 +138,39 @@ void EnergyAssembler<d>::apply_hessian(HessianAction<d>& action, const Eigen::Ve
   {
     Eigen::MatrixXd V, R, Y;
     Eigen::VectorXd ue, ye;
-    HexScratch hex;
+    detail::HexScratch hex;
     for (std::size_t bi = 0; bi < blocks_.size(); ++bi) {
       const CellBlock& block = mesh_->cells[bi];
       const Eigen::MatrixXd& dN = targets_->blocks[bi].table->dN;  // n × dQ
       const int n = block.n_nodes_per_cell(), Q = targets_->blocks[bi].n_points();
       const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
       const float* K = action.K_[bi].data();
-      const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * k_packed(dd); };
+      const auto K_of = [&](std::size_t c) { return K + c * static_cast<std::size_t>(Q) * detail::k_packed(dd); };
       // y_e of cell c, node a, component k.
       double* out = local.data() + d * blocks_[bi].first_slot;
       const auto y_of = [&](std::size_t c, int a, int k) -> double& { return out[(c * n + static_cast<std::size_t>(a)) * d + k]; };
       if constexpr (d == 3) {
         if (const TensorGrid* t = action.tensor_[bi]) {
           const std::vector<std::int32_t>& lattice_node = t->basis->node;
-          const std::ptrdiff_t n_batches = (n_cells + k_lanes - 1) / k_lanes;
+          const std::ptrdiff_t n_batches = (n_cells + detail::k_lanes - 1) / detail::k_lanes;
 #pragma omp for schedule(static) nowait
           for (std::ptrdiff_t batch = 0; batch < n_batches; ++batch) {
-            const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(k_lanes, n_cells - batch * k_lanes));
-            hex.u.assign(static_cast<std::size_t>(3 * k_lanes * n), 0.0);
+            const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(detail::k_lanes, n_cells - batch * detail::k_lanes));
+            hex.u.assign(static_cast<std::size_t>(3 * detail::k_lanes * n), 0.0);
             for (int e = 0; e < lanes; ++e) {
-              const std::int32_t* nodes = block.cell(static_cast<std::size_t>(batch * k_lanes + e));
+              const std::int32_t* nodes = block.cell(static_cast<std::size_t>(batch * detail::k_lanes + e));
               for (int l = 0; l < n; ++l)
                 for (int k = 0; k < 3; ++k)
                   if (const std::int32_t r = red[3 * nodes[lattice_node[static_cast<std::size_t>(l)]] + k]; r >= 0)
-                    hex.u[static_cast<std::size_t>((3 * l + k) * k_lanes + e)] = v[r];
+                    hex.u[static_cast<std::size_t>((3 * l + k) * detail::k_lanes + e)] = v[r];
             }
-            detail::hex_kernel(*t, K + static_cast<std::size_t>(batch) * Q * k_packed(dd) * k_lanes, hex);
+            detail::hex_kernel(*t, K + static_cast<std::size_t>(batch) * Q * detail::k_packed(dd) * detail::k_lanes, hex);
             for (int e = 0; e < lanes; ++e) {
-              const auto c = static_cast<std::size_t>(batch * k_lanes + e);
+              const auto c = static_cast<std::size_t>(batch * detail::k_lanes + e);
               for (int l = 0; l < n; ++l)
                 for (int k = 0; k < 3; ++k)
-                  y_of(c, lattice_node[static_cast<std::size_t>(l)], k) = hex.y[static_cast<std::size_t>((3 * l + k) * k_lanes + e)];
+                  y_of(c, lattice_node[static_cast<std::size_t>(l)], k) =
+                      hex.y[static_cast<std::size_t>((3 * l + k) * detail::k_lanes + e)];
             }
           }
           continue;
@@ -195,7 +189,7 @@ void EnergyAssembler<d>::apply_hessian(HessianAction<d>& action, const Eigen::Ve
               const std::int32_t r = red[d * nodes[a] + k];
               ue[k * n + a] = r >= 0 ? v[r] : 0.0;
             }
-          packed_product(E.data() + c * static_cast<std::size_t>(k_packed(dn)), ue.data(), ye.data(), dn);
+          detail::packed_product(E.data() + c * static_cast<std::size_t>(detail::k_packed(dn)), ue.data(), ye.data(), dn);
           for (int a = 0; a < n; ++a)
             for (int k = 0; k < d; ++k) y_of(c, a, k) = ye[k * n + a];
         }
@@ -227,7 +221,7 @@ void EnergyAssembler<d>::apply_hessian(HessianAction<d>& action, const Eigen::Ve
             for (int j = 0; j < d; ++j)
               for (int k = 0; k < d; ++k) g[k + d * j] = R(d * e + k, q * d + j);
             Eigen::Matrix<double, dd, 1> h;
-            packed_product<dd>(Kc + q * k_packed(dd), g.data(), h.data());
+            detail::packed_product<dd>(Kc + q * detail::k_packed(dd), g.data(), h.data());
             for (int j = 0; j < d; ++j)
               for (int k = 0; k < d; ++k) R(d * e + k, q * d + j) = h[k + d * j];
           }

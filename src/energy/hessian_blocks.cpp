@@ -12,18 +12,10 @@
 #include "meshmorph/threads.h"
 
 namespace meshmorph {
-namespace {
-
-using detail::k_packed;
-using detail::k_sq;
-using detail::packed_index;
-using detail::point_entries;
-
-}  // namespace
 
 template <int d>
 std::vector<double> EnergyAssembler<d>::hessian_blocks(HessianAction<d>& action, int threads) const {
-  constexpr int dd = k_sq(d), pairs = k_packed(d);
+  constexpr int dd = detail::k_sq(d), pairs = detail::k_packed(d);
   MESHMORPH_CHECK(action.K_.size() == mesh_->cells.size(), "EnergyAssembler::hessian_blocks: the action does not fit");
   // Per cell and node the pairs (k, l), k ≤ l, of its block, packed by rows.
   std::vector<double>& local = action.local_;
@@ -31,7 +23,9 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(HessianAction<d>& action,
   // S_jm^kl = K(k + dj, l + dm) + K(k + dm, l + dj) for j < m, K(k + dj, l + dj) for j = m:
   // the block (k, l) of node a is Σ_q Σ_{j ≤ m} ∂_j N_a ∂_m N_a S_jm^kl.
   const auto fields = [](std::pair<const float*, int> Kq, int j, int m, double* S) {
-    const auto at = [&](int r, int c) { return double(Kq.first[Kq.second * (r <= c ? packed_index(dd, r, c) : packed_index(dd, c, r))]); };
+    const auto at = [&](int r, int c) {
+      return double(Kq.first[Kq.second * (r <= c ? detail::packed_index(dd, r, c) : detail::packed_index(dd, c, r))]);
+    };
     for (int k = 0, o = 0; k < d; ++k)
       for (int l = k; l < d; ++l, ++o) S[o] = at(k + d * j, l + d * m) + (j < m ? at(k + d * m, l + d * j) : 0.0);
   };
@@ -58,13 +52,13 @@ std::vector<double> EnergyAssembler<d>::hessian_blocks(HessianAction<d>& action,
       double* y = out + c * static_cast<std::size_t>(n * pairs);  // node a, pair o at pairs·a + o
       if (!E.empty()) {
         const int dn = d * n;
-        const float* Ec = E.data() + c * static_cast<std::size_t>(k_packed(dn));
+        const float* Ec = E.data() + c * static_cast<std::size_t>(detail::k_packed(dn));
         for (int a = 0; a < n; ++a)
           for (int k = 0, o = 0; k < d; ++k)
-            for (int l = k; l < d; ++l, ++o) y[pairs * a + o] = Ec[packed_index(dn, k * n + a, l * n + a)];
+            for (int l = k; l < d; ++l, ++o) y[pairs * a + o] = Ec[detail::packed_index(dn, k * n + a, l * n + a)];
         continue;
       }
-      const auto Kq = [&](int q) { return point_entries<d>(K, t != nullptr, c, Q, q); };
+      const auto Kq = [&](int q) { return detail::point_entries<d>(K, t != nullptr, c, Q, q); };
       h.setZero(pairs, n);
       if (t) {
         if constexpr (d == 3) {
