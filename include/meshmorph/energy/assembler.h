@@ -10,6 +10,7 @@
 #include "meshmorph/energy/coarse_space.h"
 #include "meshmorph/energy/dof_map.h"
 #include "meshmorph/energy/element_energy.h"
+#include "meshmorph/energy/hessian_action.h"
 #include "meshmorph/energy/target.h"
 #include "meshmorph/mesh/topology.h"
 
@@ -33,34 +34,6 @@ struct Assembly {
   /// EnergyAssembler (fixed across calls: only the values are rewritten).
   Eigen::SparseMatrix<double> hessian;
   std::vector<double> element_values;  ///< E_e per cell without ω_e (global cell order)
-};
-
-/// The Hessian of an energy as an operator (partial assembly): what EnergyAssembler's
-/// apply_hessian() needs per quadrature point, with no matrix. For point q of a cell,
-/// K_q = w_q (W_q⁻¹ ⊗ I) d²μ/dT²(T_q) (W_q⁻¹ ⊗ I)ᵀ (d² × d², column-major; d²μ/dT² PSD-projected
-/// in Projected mode), the second derivative of w_q μ with respect to the reference gradient
-/// G = X ∇N_q of the nodal map: T = G W⁻¹, so vec(T) = (W⁻ᵀ ⊗ I) vec(G). K_q is symmetric and
-/// stored packed: the rows of its upper triangle, d²(d² + 1)/2 doubles a point.
-template <int d>
-struct HessianAction {
-  /// Cells per batch of the sum-factorized product (one SIMD lane each).
-  static constexpr int k_lanes = 4;
-  /// Per cell block: n_cells × n_points × d²(d² + 1)/2; where the block is sum-factorized
-  /// (tensor non-null) its cells in batches of k_lanes, interleaved (batch × point × entry ×
-  /// lane), the last batch padded with zeros. In single precision, as `element`: reading them
-  /// bounds the product, and the action is then H's to ~1e-7 relative, which the inexact
-  /// Newton steps of newton_matrix_free absorb (value and gradient stay in double).
-  std::vector<std::vector<float>> K;
-  /// Per cell block of simplices instead of K: the element Hessians (component-major local
-  /// order k·n + a), packed as K_q, n_cells × d·n(d·n + 1)/2: fewer numbers and flops than K.
-  std::vector<std::vector<float>> element;
-  /// Per cell block: the 1D factors of a hexahedral block's table (ShapeTable::tensor) where
-  /// its products go by sum factorization; null where the block takes dense products (other
-  /// cells, or a rule that is not a tensor grid).
-  std::vector<const TensorGrid*> tensor;
-  /// apply_hessian's and hessian_diagonal's per-cell results before they are gathered by node
-  /// (scratch, reused between calls: one product at a time per action).
-  mutable std::vector<double> local;
 };
 
 /// Assembles the energy Σ_e ω_e E_e of a metric over all cells of a mesh, with its gradient
@@ -103,17 +76,17 @@ class EnergyAssembler {
   /// y = H v for the Hessian H over the free DOFs that `action` holds: the product of
   /// assemble()'s Hessian and v to rounding, element by element
   /// (y_e = Σ_q mat(K_q vec(V_e ∇N_q)) ∇N_qᵀ, by sum factorization on hexahedra; H_e v_e on
-  /// simplices). The cells' y_e are stored, then gathered node by node in cell order (one
-  /// barrier, not one per colour), so y is bit-for-bit the same for any thread count. `v` and
-  /// `y` have n_free entries.
-  void apply_hessian(const HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y,
-                     int threads = 0) const;
+  /// simplices). The cells' y_e are stored in the action's scratch, then gathered node by node
+  /// in cell order (one barrier, not one per colour), so y is bit-for-bit the same for any
+  /// thread count. `v` and `y` have n_free entries.
+  void apply_hessian(HessianAction<d>& action, const Eigen::VectorXd& v, Eigen::VectorXd& y, int threads = 0) const;
   /// The node blocks of that H, without forming H: for node a, entry (k, l) =
   /// Σ_e Σ_q Σ_jm ∂_j N_a K_q(k + dj, l + dm) ∂_m N_a (by sum factorization on hexahedra),
   /// d × d column-major at a·d², for every node (rows and columns of fixed DOFs included).
-  std::vector<double> hessian_blocks(const HessianAction<d>& action, int threads = 0) const;
+  /// Uses the action's scratch as apply_hessian() does.
+  std::vector<double> hessian_blocks(HessianAction<d>& action, int threads = 0) const;
   /// The diagonal of that H over the free DOFs (of hessian_blocks()).
-  Eigen::VectorXd hessian_diagonal(const HessianAction<d>& action, int threads = 0) const;
+  Eigen::VectorXd hessian_diagonal(HessianAction<d>& action, int threads = 0) const;
   /// Rᵀ H R for that H and the coarse space's R (of this assembler's mesh and DofMap), formed
   /// cell by cell without H: Σ_q (∇N^c_q ⊗ I)ᵀ K_q (∇N^c_q ⊗ I) from the hats' gradients ∇N^c
   /// where H is held per point, R_eᵀ H_e R_e from the element matrices on simplices; full
@@ -138,7 +111,7 @@ class EnergyAssembler {
   };
   // store(i, k, Σ over the slots s of node i of local[width·s + k]) for k < width: the gather
   // of per-cell products (slots of node i: node_slots_[node_slot_offset_[i] .. [i+1]), in
-  // slot order whatever the threads).
+  // slot order whatever the threads). Defined in energy/detail/node_gather.h.
   template <class Store>
   void gather(const std::vector<double>& local, int width, int threads, Store store) const;
   const Mesh* mesh_;
