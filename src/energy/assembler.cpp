@@ -7,11 +7,10 @@
 #include <type_traits>
 #include <utility>
 
-#include <omp.h>
-
 #include "energy/detail/element_kernel.h"
 #include "energy/detail/pattern.h"
 #include "meshmorph/error.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph {
 namespace {
@@ -24,8 +23,6 @@ constexpr std::size_t k_chunk = 1024;
 // cache while its cells are scattered one after another; the patches must still be many per
 // colour for the threads to share them.
 constexpr int k_patch_size = 64;
-
-int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
 double chunked_total(const std::vector<double>& chunk_sums) {
   double total = 0.0;
@@ -142,7 +139,7 @@ void EnergyAssembler<d>::assemble(const Metric<d>& metric, const Eigen::MatrixXd
   const std::int32_t* red = dofs_->reduced_index().data();
   double* gradient = out.gradient.data();
   const std::span<const double> weights = options.weights;
-#pragma omp parallel num_threads(thread_count(options.threads))
+#pragma omp parallel num_threads(resolve_threads(options.threads))
   {
     if (hess) {
 #pragma omp for schedule(static)
@@ -235,7 +232,7 @@ double EnergyAssembler<d>::value(const Metric<d>& metric, const Eigen::MatrixXd&
   const auto n_chunks = static_cast<std::int64_t>((n_cells_ + k_chunk - 1) / k_chunk);
   std::vector<double> chunk_sums(static_cast<std::size_t>(n_chunks), 0.0);
   int infinite = 0;
-#pragma omp parallel num_threads(thread_count(threads)) reduction(| : infinite)
+#pragma omp parallel num_threads(resolve_threads(threads)) reduction(| : infinite)
   {
     detail::ElementScratch<d> scratch;
     detail::NodalMatrix<d> X;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The distance field of distance_field.h: refinement of a root grid where the indicator
 // changes sign, marching simplices on the finest cells, exact point–facet distances through
-// an AABB tree. Points of the surface and of the tree are padded to 3D (z = 0 in 2D).
+// a box tree. Points of the surface and of the tree are padded to 3D (z = 0 in 2D).
 #include "meshmorph/geometry/distance_field.h"
 
 #include <algorithm>
@@ -9,16 +9,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Geometry>
-
+#include "geometry/detail/box_tree.h"
 #include "meshmorph/fem/reference_element.h"
+#include "meshmorph/geometry/closest_on_simplex.h"
 
 namespace meshmorph {
 namespace {
@@ -73,128 +72,44 @@ bool changes_sign(const std::function<bool(const Vec&)>& inside, const Lattice& 
   return false;
 }
 
-P3 pad(const Vec& x) {
-  P3 p = P3::Zero();
-  p.head(x.size()) = x;
-  return p;
-}
-
-P3 closest_on_segment(const P3& p, const P3& a, const P3& b) {
-  const P3 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  if (l2 == 0) return a;
-  return a + std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) * ab;
-}
-
-// The closest point of triangle abc to p by its Voronoi regions (vertices, edges, face).
-P3 closest_on_triangle(const P3& p, const P3& a, const P3& b, const P3& c) {
-  const P3 ab = b - a, ac = c - a;
-  if (ab.cross(ac).squaredNorm() <= 1e-28 * ab.squaredNorm() * ac.squaredNorm()) {  // degenerate: its edges
-    P3 best = closest_on_segment(p, a, b);
-    for (const P3& q : {closest_on_segment(p, b, c), closest_on_segment(p, c, a)})
-      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
-    return best;
-  }
-  const P3 ap = p - a, bp = p - b, cp = p - c;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d1 <= 0 && d2 <= 0) return a;
-  if (d3 >= 0 && d4 <= d3) return b;
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double sum = va + vb + vc;
-  return a + (vb / sum) * ab + (vc / sum) * ac;
-}
-
-// Segments (2 points) or triangles (3 points) and an AABB tree over them for nearest-facet
-// queries.
-class FacetTree {
+// The distance to the nearest of the facets (segments: 2 corners, triangles: 3), by a box
+// tree over their corners' boxes split at their centroids.
+class FacetDistance {
  public:
-  FacetTree(std::vector<std::array<P3, 3>> facets, int corners) : facets_(std::move(facets)), corners_(corners) {
-    std::vector<int> order(facets_.size());
-    std::iota(order.begin(), order.end(), 0);
-    nodes_.resize(1);
-    build(0, order, 0, static_cast<int>(order.size()));
-    std::vector<std::array<P3, 3>> sorted(facets_.size());
-    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = facets_[static_cast<std::size_t>(order[i])];
-    facets_ = std::move(sorted);
-  }
+  FacetDistance(std::vector<std::array<P3, 3>> facets, int corners)
+      : facets_(std::move(facets)), corners_(corners), tree_(make_tree(facets_, corners_)) {}
 
   double distance(const P3& p) const {
     double best = std::numeric_limits<double>::infinity();
-    // Depth-first with the nearer child first: at most one pending sibling per level of a
-    // median-split tree (depth ≤ 64).
-    std::array<int, 128> stack{};
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (box_distance2(n, p) >= best) continue;
-      if (n.left < 0) {
-        for (int f = n.begin; f < n.end; ++f) best = std::min(best, (closest(p, facets_[static_cast<std::size_t>(f)]) - p).squaredNorm());
-        continue;
-      }
-      const Node &l = nodes_[static_cast<std::size_t>(n.left)], &r = nodes_[static_cast<std::size_t>(n.left + 1)];
-      const bool left_first = box_distance2(l, p) <= box_distance2(r, p);
-      stack[static_cast<std::size_t>(top++)] = left_first ? n.left + 1 : n.left;
-      stack[static_cast<std::size_t>(top++)] = left_first ? n.left : n.left + 1;
-    }
+    tree_.nearest_first(
+        p, [&](double box2) { return box2 < best; },
+        [&](int f) {
+          const auto& v = facets_[static_cast<std::size_t>(f)];
+          const P3 q = corners_ == 2 ? closest_on_segment(p, v[0], v[1]) : closest_on_triangle(p, v[0], v[1], v[2]);
+          best = std::min(best, (q - p).squaredNorm());
+        });
     return std::sqrt(best);
   }
 
  private:
-  struct Node {
-    P3 lo, hi;
-    int left = -1;  // children at left, left + 1; -1 for a leaf of facets [begin, end)
-    int begin = 0, end = 0;
-  };
-
-  P3 closest(const P3& p, const std::array<P3, 3>& f) const {
-    return corners_ == 2 ? closest_on_segment(p, f[0], f[1]) : closest_on_triangle(p, f[0], f[1], f[2]);
-  }
-  static double box_distance2(const Node& n, const P3& p) {
-    return (n.lo - p).cwiseMax(p - n.hi).cwiseMax(0.0).squaredNorm();
-  }
-  P3 centroid(int f) const {
-    const auto& v = facets_[static_cast<std::size_t>(f)];
-    return corners_ == 2 ? P3((v[0] + v[1]) / 2) : P3((v[0] + v[1] + v[2]) / 3);
-  }
-
-  // Fills node `id` with the facets order[begin, end); the two children of a node are
-  // stored next to each other.
-  void build(std::size_t id, std::vector<int>& order, int begin, int end) {
-    P3 lo = P3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (int i = begin; i < end; ++i) {
-      const auto& f = facets_[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
-      for (int k = 0; k < corners_; ++k) {
-        lo = lo.cwiseMin(f[static_cast<std::size_t>(k)]);
-        hi = hi.cwiseMax(f[static_cast<std::size_t>(k)]);
+  static detail::BoxTree make_tree(const std::vector<std::array<P3, 3>>& facets, int corners) {
+    const auto n = static_cast<Eigen::Index>(facets.size());
+    Eigen::Matrix3Xd lo(3, n), hi(3, n), centroid(3, n);
+    for (Eigen::Index f = 0; f < n; ++f) {
+      const auto& v = facets[static_cast<std::size_t>(f)];
+      lo.col(f) = hi.col(f) = v[0];
+      for (std::size_t k = 1; k < static_cast<std::size_t>(corners); ++k) {
+        lo.col(f) = lo.col(f).cwiseMin(v[k]);
+        hi.col(f) = hi.col(f).cwiseMax(v[k]);
       }
+      centroid.col(f) = corners == 2 ? P3((v[0] + v[1]) / 2) : P3((v[0] + v[1] + v[2]) / 3);
     }
-    nodes_[id].lo = lo;
-    nodes_[id].hi = hi;
-    if (end - begin <= 4) {
-      nodes_[id].begin = begin;
-      nodes_[id].end = end;
-      return;
-    }
-    int axis = 0;
-    (hi - lo).maxCoeff(&axis);
-    const int mid = (begin + end) / 2;
-    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                     [&](int a, int b) { return centroid(a)[axis] < centroid(b)[axis]; });
-    const std::size_t left = nodes_.size();
-    nodes_.resize(left + 2);
-    nodes_[id].left = static_cast<int>(left);
-    build(left, order, begin, mid);
-    build(left + 1, order, mid, end);
+    return detail::BoxTree(lo, hi, centroid);
   }
 
   std::vector<std::array<P3, 3>> facets_;
   int corners_;
-  std::vector<Node> nodes_;
+  detail::BoxTree tree_;
 };
 
 }  // namespace
@@ -325,7 +240,7 @@ DistanceField distance_field(const std::function<bool(const Vec&)>& inside, int 
       const Vec m = (a + b) / 2;
       (inside(m) ? a : b) = m;
     }
-    crossing[i] = pad((a + b) / 2);
+    crossing[i] = padded_3d((a + b) / 2);
   }
   std::vector<std::array<P3, 3>> facets;
   for (const auto& m : marched) {
@@ -337,7 +252,7 @@ DistanceField distance_field(const std::function<bool(const Vec&)>& inside, int 
     }
   }
   out.surface_facets = facets.size();
-  const FacetTree tree(std::move(facets), dim);
+  const FacetDistance surface(std::move(facets), dim);
 
   // Background cells and nodes (shared through their lattice keys).
   const ElementType type = dim == 2 ? ElementType::Quadrilateral : ElementType::Hexahedron;
@@ -370,7 +285,7 @@ DistanceField distance_field(const std::function<bool(const Vec&)>& inside, int 
     const Vec x = L.point(node_lattice[n]);
     mesh.x.col(static_cast<Eigen::Index>(n)) = x;
     mesh.node_tags[n] = static_cast<std::int64_t>(n) + 1;
-    const double d = tree.distance(pad(x));
+    const double d = surface.distance(padded_3d(x));
     out.values[static_cast<Eigen::Index>(n)] = inside(x) ? -d : d;
   }
   mesh.cells.push_back(std::move(block));

@@ -2,6 +2,7 @@
 #include "meshmorph/geometry/level_set_function.h"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -139,7 +140,46 @@ NodePtr compile_node(const LevelSet& ls, const CompileContext& ctx) {
       ls.shape);
 }
 
+namespace {
+
+// The default answers at x: each one the node's function there.
+class ForwardingPoint final : public NodePoint {
+ public:
+  ForwardingPoint(const LevelSetNode& node, const Vec& x) : node_(node), x_(x) {}
+  double value() const override { return node_.value(x_); }
+  Vec gradient() const override {
+    Vec g;
+    node_.value_gradient(x_, g);
+    return g;
+  }
+  Eigen::MatrixXd hessian() const override { return node_.hessian(x_); }
+  double stationarity(const Vec& g) const override { return node_.stationarity(x_, g); }
+  Eigen::MatrixXd step_normals(const Vec& g) const override { return node_.step_normals(x_, g); }
+
+ private:
+  const LevelSetNode& node_;
+  Vec x_;
+};
+
+}  // namespace
+
+std::unique_ptr<const NodePoint> LevelSetNode::at(const Vec& x) const { return std::make_unique<ForwardingPoint>(*this, x); }
+
 }  // namespace detail
+
+double LevelSetPoint::value() const { return point_->value(); }
+Eigen::VectorXd LevelSetPoint::gradient() const { return point_->gradient(); }
+Eigen::MatrixXd LevelSetPoint::hessian() const { return point_->hessian(); }
+
+double LevelSetPoint::stationarity(const Eigen::Ref<const Eigen::VectorXd>& g) const {
+  MESHMORPH_CHECK(g.size() == dim_, "LevelSetPoint::stationarity: vector of the wrong dimension");
+  return point_->stationarity(g);
+}
+
+Eigen::MatrixXd LevelSetPoint::step_normals(const Eigen::Ref<const Eigen::VectorXd>& g) const {
+  MESHMORPH_CHECK(g.size() == dim_, "LevelSetPoint::step_normals: vector of the wrong dimension");
+  return point_->step_normals(g);
+}
 
 LevelSetFunction::LevelSetFunction(const LevelSet& ls, int dim, const LevelSetOptions& options) : dim_(dim) {
   MESHMORPH_CHECK(dim == 2 || dim == 3, "LevelSetFunction: dim must be 2 or 3");
@@ -179,6 +219,11 @@ Eigen::MatrixXd LevelSetFunction::step_normals(const Eigen::Ref<const Eigen::Vec
                                                const Eigen::Ref<const Eigen::VectorXd>& g) const {
   MESHMORPH_CHECK(x.size() == dim_ && g.size() == dim_, "LevelSetFunction::step_normals: vector of the wrong dimension");
   return root_->step_normals(x, g);
+}
+
+LevelSetPoint LevelSetFunction::at(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  MESHMORPH_CHECK(x.size() == dim_, "LevelSetFunction::at: point of the wrong dimension");
+  return LevelSetPoint(root_, root_->at(x), dim_);
 }
 
 std::optional<Eigen::VectorXd> LevelSetFunction::closest_point(const Eigen::Ref<const Eigen::VectorXd>& x) const {

@@ -13,6 +13,7 @@
 #include "meshmorph/fem/shape_table.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/geometry/closest_on_simplex.h"
 #include "meshmorph/mesh/topology.h"
 #include "meshmorph/methods/fit.h"
 
@@ -29,9 +30,8 @@ CellBlock empty_like(const CellBlock& block) {
 
 // Whether reference point p lies on the segment [a, b] (a point when a = b).
 bool on_segment(const Eigen::VectorXd& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const Eigen::VectorXd e = b - a;
-  const double t = e.squaredNorm() > 0.0 ? std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - a - t * e).norm() < 1e-9;
+  const Eigen::Vector3d p3 = padded_3d(p);
+  return (closest_on_segment(p3, padded_3d(a), padded_3d(b)) - p3).norm() < 1e-9;
 }
 
 }  // namespace

@@ -6,11 +6,10 @@
 #include <limits>
 #include <span>
 
-#include <omp.h>
-
 #include "meshmorph/error.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/quality/metric_registry.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph {
 
@@ -101,7 +100,7 @@ bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
   for (const CellBlock& block : mesh_->cells) {
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
     const int n = block.n_nodes_per_cell();
-#pragma omp parallel for num_threads(threads_ > 0 ? threads_ : omp_get_max_threads()) reduction(&& : valid) schedule(static)
+#pragma omp parallel for num_threads(resolve_threads(threads_)) reduction(&& : valid) schedule(static)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       Eigen::MatrixXd X(d, n);
       for (int a = 0; a < n; ++a) X.col(a) = trial_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);

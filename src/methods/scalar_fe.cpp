@@ -5,12 +5,11 @@
 #include <cmath>
 #include <string>
 
-#include <omp.h>
-
 #include <Eigen/LU>
 
 #include "energy/detail/pattern.h"
 #include "meshmorph/error.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph::detail {
 namespace {
@@ -25,7 +24,7 @@ int scalar_degree(ElementType type, int order) { return is_simplex(type) ? std::
 }  // namespace
 
 ScalarAssembler::ScalarAssembler(const Mesh& mesh, const Topology& topology, int threads, std::string_view method)
-    : n_nodes_(mesh.n_nodes()), threads_(threads > 0 ? threads : omp_get_max_threads()) {
+    : n_nodes_(mesh.n_nodes()), threads_(resolve_threads(threads)) {
   const int d = mesh.dim;
   MESHMORPH_CHECK(topology.node_node_offset.size() == n_nodes_ + 1, std::string(method) + ": the topology does not fit the mesh");
   outer_.assign(topology.node_node_offset.begin(), topology.node_node_offset.end());

@@ -8,19 +8,16 @@
 #include <string>
 #include <vector>
 
-#include <omp.h>
-
 #include <Eigen/LU>
 
 #include "energy/detail/pattern.h"
 #include "meshmorph/energy/dof_map.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/shape_table.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph::detail {
 namespace {
-
-int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
 // Below this many cells a block is assembled by one thread: the barriers between colours
 // would cost more than the work (and spin long on a loaded machine).
@@ -67,7 +64,7 @@ double mean_jacobian(const Mesh& mesh, const Topology& topology, int threads, st
     const auto n_cells = static_cast<std::int64_t>(block.n_cells());
     const int n = block.n_nodes_per_cell();
     points += n_cells * table.n_points();
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads)) reduction(min : first_bad) \
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) reduction(min : first_bad) \
     if (n_cells >= k_min_parallel_cells)
     for (std::int64_t c = 0; c < n_cells; ++c) {
       const Eigen::MatrixXd X = gather<d>(mesh, block.cell(static_cast<std::size_t>(c)), n);
@@ -128,7 +125,7 @@ Eigen::SparseMatrix<double> assemble(const Mesh& mesh, const Topology& topology,
     std::vector<std::int32_t> color_offset, order;
     color_cells(block, topology, topology.block_offset[bi], color_offset, order);
     const std::vector<std::int32_t> scatter = scatter_offsets(block, topology, pattern);
-#pragma omp parallel num_threads(thread_count(p.threads)) \
+#pragma omp parallel num_threads(resolve_threads(p.threads)) \
     if (static_cast<std::int64_t>(block.n_cells()) >= k_min_parallel_cells)
     {
       Eigen::MatrixXd G(n, d), Ke(d * n, d * n);

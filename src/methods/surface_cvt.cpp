@@ -11,6 +11,7 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/fem/trace.h"
+#include "meshmorph/geometry/closest_on_simplex.h"
 
 namespace meshmorph {
 namespace {
@@ -44,29 +45,11 @@ void split_facet(ElementType type, int order, const std::vector<std::int32_t>& v
                    std::string(name_of(type)) + " of order " + std::to_string(order) + ")");
 }
 
-Eigen::VectorXd closest_on_segment(const Eigen::VectorXd& p, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const Eigen::VectorXd ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return a + t * ab;
-}
-
-// The projection onto the triangle's plane when it falls inside, else the closest point of
-// its edges (the closest point of a triangle outside its interior lies on its boundary).
-Eigen::VectorXd closest_on_triangle(const Eigen::VectorXd& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                   const Eigen::Vector3d& c) {
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double nn = n.squaredNorm();
-  if (nn > 0.0) {
-    const Eigen::Vector3d q = Eigen::Vector3d(p) - n * n.dot(Eigen::Vector3d(p) - a) / nn;
-    const double la = n.dot((b - q).cross(c - q)) / nn, lb = n.dot((c - q).cross(a - q)) / nn;
-    if (la >= 0.0 && lb >= 0.0 && la + lb <= 1.0) return q;
-  }
-  Eigen::VectorXd best = closest_on_segment(p, a, b);
-  for (const auto& [s, t] : {std::pair{b, c}, std::pair{c, a}}) {
-    const Eigen::VectorXd cand = closest_on_segment(p, s, t);
-    if ((cand - p).squaredNorm() < (best - p).squaredNorm()) best = cand;
-  }
-  return best;
+// The closest point of facet f (nodes at x) to p, in 3D (z = 0 in 2D).
+Eigen::Vector3d closest_on_facet(const DesignSurface& s, std::size_t f, const Eigen::MatrixXd& x, const Eigen::Vector3d& p) {
+  const std::int32_t* v = s.facets.data() + f * static_cast<std::size_t>(s.dim);
+  const auto node = [&](int k) { return padded_3d(x.col(v[k])); };
+  return s.dim == 2 ? closest_on_segment(p, node(0), node(1)) : closest_on_triangle(p, node(0), node(1), node(2));
 }
 
 // Measure, centroid and area-weighted normal (normal · measure) of facet f at positions x.
@@ -123,12 +106,8 @@ double spacing_ratio(const DesignSurface& s, const Eigen::MatrixXd& x) {
 
 double distance_to_surface(const DesignSurface& s, const Eigen::MatrixXd& x, const Eigen::VectorXd& p) {
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t f = 0; f < s.n_facets(); ++f) {
-    const std::int32_t* v = s.facets.data() + f * static_cast<std::size_t>(s.dim);
-    const Eigen::VectorXd q = s.dim == 2 ? closest_on_segment(p, x.col(v[0]), x.col(v[1]))
-                                         : closest_on_triangle(p, x.col(v[0]), x.col(v[1]), x.col(v[2]));
-    best = std::min(best, (q - p).norm());
-  }
+  const Eigen::Vector3d p3 = padded_3d(p);
+  for (std::size_t f = 0; f < s.n_facets(); ++f) best = std::min(best, (closest_on_facet(s, f, x, p3) - p3).norm());
   return best;
 }
 
@@ -203,27 +182,23 @@ CvtResult surface_cvt(const DesignSurface& s, const Eigen::MatrixXd& x, const Ei
   // with it; the walk stops when the host is the closest of its neighbourhood.
   std::vector<std::int32_t> host(n_nodes, -1);
   for (std::int32_t i : nodes) host[static_cast<std::size_t>(i)] = adjacent[static_cast<std::size_t>(offset[static_cast<std::size_t>(i)])];
-  auto closest_on_facet = [&](std::int32_t f, const Eigen::VectorXd& p) -> Eigen::VectorXd {
-    const std::int32_t* v = s.facets.data() + static_cast<std::size_t>(f) * d;
-    if (d == 2) return closest_on_segment(p, x.col(v[0]), x.col(v[1]));
-    return closest_on_triangle(p, x.col(v[0]), x.col(v[1]), x.col(v[2]));
-  };
-  auto project_discrete = [&](std::int32_t i, const Eigen::VectorXd& p) {
+  auto project_discrete = [&](std::int32_t i, const Eigen::VectorXd& p_d) -> Eigen::VectorXd {
     std::int32_t& h = host[static_cast<std::size_t>(i)];
-    Eigen::VectorXd best = closest_on_facet(h, p);
+    const Eigen::Vector3d p = padded_3d(p_d);
+    Eigen::Vector3d best = closest_on_facet(s, static_cast<std::size_t>(h), x, p);
     for (int walk = 0; walk < 1000; ++walk) {
       std::int32_t next = h;
       const std::int32_t* v = s.facets.data() + static_cast<std::size_t>(h) * d;
       for (int k = 0; k < d; ++k)
         for (std::int32_t m = offset[static_cast<std::size_t>(v[k])]; m < offset[static_cast<std::size_t>(v[k]) + 1]; ++m) {
           const std::int32_t f = adjacent[static_cast<std::size_t>(m)];
-          const Eigen::VectorXd cand = closest_on_facet(f, p);
+          const Eigen::Vector3d cand = closest_on_facet(s, static_cast<std::size_t>(f), x, p);
           if ((cand - p).squaredNorm() < (best - p).squaredNorm() * (1.0 - 1e-14)) best = cand, next = f;
         }
       if (next == h) break;
       h = next;
     }
-    return best;
+    return best.head(d);
   };
 
   double mean_edge = 0.0;

@@ -7,17 +7,15 @@
 #include <string>
 
 #include <Eigen/LU>
-#include <omp.h>
 
 #include "meshmorph/error.h"
 #include "meshmorph/fem/quadrature.h"
 #include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph {
 namespace {
-
-int thread_count(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
 template <int d>
 Eigen::Matrix<double, d, Eigen::Dynamic> gather(const Eigen::MatrixXd& x, const std::int32_t* nodes, int n) {
@@ -165,7 +163,7 @@ typename UntangleProblem<d>::Measures UntangleProblem<d>::measure() const {
     const ShapeTable& table = *bt.table;
     const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
     const int n = block.n_nodes_per_cell();
-#pragma omp parallel for num_threads(thread_count(threads_)) reduction(min : v_min, q_min) reduction(+ : inverted) schedule(static)
+#pragma omp parallel for num_threads(resolve_threads(threads_)) reduction(min : v_min, q_min) reduction(+ : inverted) schedule(static)
     for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
       const auto X = gather<d>(x_, block.cell(static_cast<std::size_t>(c)), n);
       bool bad = false;

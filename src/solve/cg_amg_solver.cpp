@@ -4,14 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include <omp.h>
-
 #include "meshmorph/error.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph::detail {
 namespace {
-
-int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
 // y += a·x
 void axpy(double a, const Eigen::VectorXd& x, Eigen::VectorXd& y, int threads) {
@@ -25,7 +22,7 @@ void axpy(double a, const Eigen::VectorXd& x, Eigen::VectorXd& y, int threads) {
 AmgOptions amg_options(const LinearSolverOptions& options) {
   AmgOptions amg;
   amg.block_size = std::max(1, options.block_size);
-  amg.threads = thread_count(options.threads);
+  amg.threads = resolve_threads(options.threads);
   return amg;
 }
 
@@ -106,7 +103,7 @@ LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, d
   }
   const int n = A_.n;
   MESHMORPH_CHECK(b.size() == n, "cg-amg: right-hand side of the wrong size");
-  const int threads = thread_count(options_.threads);
+  const int threads = resolve_threads(options_.threads);
   if (rtol <= 0.0) rtol = options_.rtol;
   if (x.size() != n) x = Eigen::VectorXd::Zero(n);
   r_.resize(n), z_.resize(n), p_.resize(n), q_.resize(n);

@@ -9,8 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <omp.h>
-
+#include "meshmorph/threads.h"
 #include "solve/detail/amg_csr.h"
 
 namespace meshmorph::detail {
@@ -36,7 +35,7 @@ LinearSolveStats MinresJacobiSolver::solve(const Eigen::VectorXd& b, Eigen::Vect
     return stats;
   }
   const int n = A_.n;
-  const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
+  const int threads = resolve_threads(options_.threads);
   if (rtol <= 0.0) rtol = options_.rtol;
   if (x.size() != n) x.setZero(n);
   const double b_norm = b.norm();

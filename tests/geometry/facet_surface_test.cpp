@@ -213,9 +213,8 @@ void expect_same(const Answer& a, const Answer& b) {
   EXPECT_EQ(a.hessian, b.hessian);
 }
 
-// Each thread reuses its last closest-point search for queries at the same point: answers do
-// not depend on the order of the queries, nor on the surface that lived at the same address
-// before (a flat and a bent bottom differ at every point).
+// Answers do not depend on the order of the queries, nor on the surface that lived at the
+// same address before (a flat and a bent bottom differ at every point).
 TEST(FacetSurface, AnswersDoNotDependOnTheQueriesBefore) {
   const Case c{ElementType::Tetrahedron, 2};
   const Bottom flat = bottom(c, false), bent = bottom(c, true);
@@ -254,6 +253,37 @@ TEST(FacetSurface, ConcurrentCallsGiveTheSerialResults) {
   for (std::thread& t : threads) t.join();
   for (const std::vector<Answer>& out : parallel)
     for (std::size_t i = 0; i < xs.size(); ++i) expect_same(out[i], serial[i]);
+}
+
+// at(x) answers from one search what the separate calls answer from one each, bit for bit:
+// off the surface, on it inside a facet, and at facet edges and corners (creases of a bent
+// P1 bottom, where stationarity and step normals take the facets' cones).
+TEST(FacetSurface, AnswersAtAPointEqualTheSeparateCalls) {
+  for (const Case c : {Case{ElementType::Hexahedron, 2}, Case{ElementType::Tetrahedron, 1}, Case{ElementType::Triangle, 1}}) {
+    const Bottom b = bottom(c, true);
+    const int d = b.mesh.dim;
+    const LevelSetFunction sigma = facet_surface(b.mesh, b.topology, b.facets);
+    std::vector<Eigen::VectorXd> xs = points(d, true, 8);
+    for (std::size_t i = 0, n = xs.size(); i < n; ++i) xs.push_back(*sigma.closest_point(xs[i]));
+    for (std::int32_t f : b.facets) {
+      const CellFacet cf = b.topology.facets[static_cast<std::size_t>(f)][0];
+      const auto [blk, cell] = b.topology.locate(cf.cell);
+      for (std::int32_t node : facet_nodes(b.mesh.cells[blk], cell, cf.local)) xs.push_back(b.mesh.x.col(node));
+    }
+    std::mt19937 rng(4);
+    std::normal_distribution<double> normal;
+    for (const Eigen::VectorXd& x : xs) {
+      SCOPED_TRACE(testing::Message() << name_of(c.type) << " p" << c.order << ", x = " << x.transpose());
+      Eigen::VectorXd g(d);
+      for (int k = 0; k < d; ++k) g[k] = normal(rng);
+      const LevelSetPoint at = sigma.at(x);
+      EXPECT_EQ(at.value(), sigma.value(x));
+      EXPECT_EQ(at.gradient(), sigma.gradient(x));
+      EXPECT_EQ(at.hessian(), sigma.hessian(x));
+      EXPECT_EQ(at.stationarity(g), sigma.stationarity(x, g));
+      EXPECT_EQ(at.step_normals(g), sigma.step_normals(x, g));
+    }
+  }
 }
 
 }  // namespace

@@ -127,5 +127,31 @@ TEST(TorusLevelSet, DistanceFromTheCoreCircleMinusMinorRadius) {
   expect_signed_distance_properties(tilted, 2.5);
 }
 
+// LevelSetFunction::at answers as the separate calls, for a closed form (a box: its faces,
+// edges and corners) and a difference of two of them.
+TEST(LevelSetPoint, AnswersAsTheSeparateCalls) {
+  LevelSet cut;
+  cut.shape.emplace<DifferenceLevelSet>();
+  auto& operands = std::get<DifferenceLevelSet>(cut.shape).operands;
+  operands.resize(2);
+  operands[0].shape.emplace<BoxLevelSet>(BoxLevelSet{vec({1, 0.5, 0.5}), vec({2, 1, 1})});
+  operands[1].shape.emplace<SphereLevelSet>(SphereLevelSet{vec({2, 1, 1}), 0.5});
+  for (const LevelSetFunction& f : {make(BoxLevelSet{vec({1, 0.5, 0.5}), vec({2, 1, 1})}, 3), LevelSetFunction(cut, 3)}) {
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> u(-1.0, 3.0);
+    for (int i = 0; i < 20; ++i) {
+      const Eigen::VectorXd x = vec({u(rng), u(rng), u(rng)}), g = vec({u(rng), u(rng), u(rng)});
+      SCOPED_TRACE(testing::Message() << "x = " << x.transpose());
+      const LevelSetPoint at = f.at(x);
+      EXPECT_EQ(at.value(), f.value(x));
+      EXPECT_EQ(at.gradient(), f.gradient(x));
+      const Eigen::ArrayXXd h = at.hessian().array(), h_f = f.hessian(x).array();
+      EXPECT_TRUE((h == h_f || (h.isNaN() && h_f.isNaN())).all());
+      EXPECT_EQ(at.stationarity(g), f.stationarity(x, g));
+      EXPECT_EQ(at.step_normals(g), f.step_normals(x, g));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -37,7 +37,7 @@ struct DistanceField {
 ///   conforming between neighbours); on each simplex edge whose ends the indicator tells
 ///   apart, the crossing is found by bisection of the indicator to 1e-13 of the cell size;
 ///   marching simplices join the crossings into segments / triangles.
-/// - Values: the exact distance of each node to those facets (an AABB tree), negative where
+/// - Values: the exact distance of each node to those facets (a box tree), negative where
 ///   inside(x). The surface is within O(h²κ) of the true one (h the finest size, κ its
 ///   curvature); features thinner than h/2 may be missed.
 /// Throws std::invalid_argument for a dimension other than 2 or 3, an empty box, cells < 1,

@@ -18,7 +18,7 @@ Eigen::VectorXd outward_normal(const Eigen::MatrixXd& T);
 /// Lagrange nodes frozen at mesh.x (lines in 2D, triangles and quadrilaterals in 3D).
 ///
 /// With p the closest point of S to x (over every facet, each by Newton on |φ_f(u) − x|² in
-/// its reference facet, edges and corners included; a bounding-box tree over the facets, and
+/// its reference facet, edges and corners included; a box tree over the facets, and
 /// each facet skipped when a polytope around its Bézier control points is farther than the
 /// nearest facet so far) and n_f(p) the outward unit normal there (outward_normal):
 /// - x on S (|x − p| ≤ 1e-12 of S's size): σ = (x − p)·n̄, ∇σ = n̄, the mean of the normals of
@@ -39,8 +39,8 @@ Eigen::VectorXd outward_normal(const Eigen::MatrixXd& T);
 /// facets through x, and step_normals(x, g) all their normals when no cone descends more than
 /// the crease itself (the step follows the crease), else the normal of the steepest facet.
 /// φ_f is evaluated in monomials, a change of basis of its Lagrange form (equal to rounding).
-/// Cost: one closest-point search per point; each thread keeps its last one, so the value,
-/// gradient, Hessian, closest point, stationarity and step normals at one x share it.
+/// Cost: one closest-point search per call; LevelSetFunction::at(x) makes one search for the
+/// value, gradient, Hessian, stationarity and step normals at x together.
 LevelSetFunction facet_surface(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets);
 
 }  // namespace meshmorph

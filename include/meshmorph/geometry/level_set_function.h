@@ -13,7 +13,8 @@ namespace meshmorph {
 
 namespace detail {
 class LevelSetNode;
-}
+class NodePoint;
+}  // namespace detail
 
 /// How a LevelSet is compiled.
 struct LevelSetOptions {
@@ -23,6 +24,28 @@ struct LevelSetOptions {
   /// expression gradients is h = 2e-4·max(‖x‖, length_scale). Pass the size of the mesh
   /// when it is far from 1 (e.g. a geometry in metres of size 1e-4).
   double length_scale = 1.0;
+};
+
+/// A level set's answers at one point x (LevelSetFunction::at): equal to the
+/// LevelSetFunction member functions of the same names at x, from one evaluation where they
+/// share one: a facet surface (facet_surface.h) searches its facets once for all of them,
+/// where each of those member functions searches again. A value of its caller's (one per
+/// thread, no state shared); it keeps its level set alive.
+class LevelSetPoint {
+ public:
+  double value() const;
+  Eigen::VectorXd gradient() const;
+  Eigen::MatrixXd hessian() const;
+  double stationarity(const Eigen::Ref<const Eigen::VectorXd>& g) const;
+  Eigen::MatrixXd step_normals(const Eigen::Ref<const Eigen::VectorXd>& g) const;
+
+ private:
+  friend class LevelSetFunction;
+  LevelSetPoint(std::shared_ptr<const detail::LevelSetNode> root, std::shared_ptr<const detail::NodePoint> point, int dim)
+      : root_(std::move(root)), point_(std::move(point)), dim_(dim) {}
+  std::shared_ptr<const detail::LevelSetNode> root_;
+  std::shared_ptr<const detail::NodePoint> point_;
+  int dim_;
 };
 
 /// A compiled, evaluable level set σ: ℝ^d → ℝ (σ < 0 inside the solid, σ = 0 on its
@@ -101,6 +124,9 @@ class LevelSetFunction {
   /// no larger than the descent along the crease), where the normals of every facet through x
   /// (k = 2 on an edge in 3D: the step follows it; k = dim() at a corner: no step).
   Eigen::MatrixXd step_normals(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g) const;
+
+  /// The answers at x (LevelSetPoint), for a caller that asks several of them there.
+  LevelSetPoint at(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// The closest point p of the zero level set to x: σ(p) = 0 and x − p ∥ ∇σ(p) (or, at
   /// an edge or corner of a CSG, x − p in the span of the active operands' normals).

@@ -17,6 +17,17 @@ namespace meshmorph::detail {
 
 using Vec = Eigen::VectorXd;
 
+/// A node's answers at one point x (LevelSetNode::at), sharing the work they have in common.
+class NodePoint {
+ public:
+  virtual ~NodePoint() = default;
+  virtual double value() const = 0;
+  virtual Vec gradient() const = 0;
+  virtual Eigen::MatrixXd hessian() const = 0;
+  virtual double stationarity(const Vec& g) const = 0;
+  virtual Eigen::MatrixXd step_normals(const Vec& g) const = 0;
+};
+
 /// One node of a compiled level-set tree. Immutable; safe to evaluate from several threads.
 class LevelSetNode {
  public:
@@ -43,6 +54,9 @@ class LevelSetNode {
     value_gradient(x, n);
     return n.normalized();
   }
+  /// The answers at x, equal to this node's functions there. Default: each one calls its
+  /// function at x; a facet surface answers them all from one search.
+  virtual std::unique_ptr<const NodePoint> at(const Vec& x) const;
   /// The smooth pieces whose zero sets make up this one's (itself, for a leaf).
   virtual void collect_leaves(std::vector<const LevelSetNode*>& leaves) const { leaves.push_back(this); }
 };
