@@ -78,6 +78,20 @@ class RunnerTest(unittest.TestCase):
         self.check_same("optimize", meshmorph.optimize, case)
 
 
+class QualityTest(unittest.TestCase):
+    def test_the_measures_of_the_command_line(self):
+        source = EXAMPLES / "meshes" / "sphere_in_box_p2.msh"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = pathlib.Path(tmp) / "q.json"
+            subprocess.run([os.environ["MESHMORPH_BIN"], "--threads", "1", "quality", str(source), "--json", str(path)],
+                           check=True, stdout=subprocess.DEVNULL)
+            cli = json.loads(path.read_text())
+        q = meshmorph.quality(meshmorph.read_mesh(str(source)))
+        for key in ("inverted_elements", "valid", "min_shape_quality", "mean_shape_quality", "min_scaled_jacobian"):
+            self.assertEqual(q[key], cli[key], key)
+        self.assertEqual(q["cells"], cli["elements"])
+
+
 class ConvertTest(unittest.TestCase):
     def test_the_same_file_as_the_command_line(self):
         source = EXAMPLES / "meshes" / "annulus.msh"
