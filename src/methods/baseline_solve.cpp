@@ -7,24 +7,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "meshmorph/energy/slide_constraints.h"
 #include "meshmorph/error.h"
 #include "methods/detail/stiffness.h"
 
 namespace meshmorph::detail {
 namespace {
-
-// Orthonormal basis of the plane with unit normal n (d − 1 columns).
-Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n) {
-  if (n.size() == 2) return Eigen::Vector2d(-n[1], n[0]);
-  Eigen::Index axis = 0;  // the coordinate axis least aligned with n
-  n.cwiseAbs().minCoeff(&axis);
-  const Eigen::Vector3d nn = n;
-  const Eigen::Vector3d t1 = nn.cross(Eigen::Vector3d::Unit(axis)).normalized();
-  Eigen::MatrixXd T(3, 2);
-  T.col(0) = t1;
-  T.col(1) = nn.cross(t1);
-  return T;
-}
 
 std::string singular_message(std::string_view method) {
   return std::string(method) +

@@ -24,8 +24,9 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   result.fit_error0 = result.fit_error = P.fit_error();
   result.min_det0 = result.min_det = P.min_det();
   MESHMORPH_CHECK(result.min_det0 > 0.0, "fit: the input mesh must be valid");
-  P.weight = options.weight0 > 0.0 ? options.weight0 : 0.5 * options.penalty0 * P.metric_stiffness();
-  result.history.push_back({0, P.weight, 0.0, result.fit_error, result.min_det});
+  double& weight = P.penalty().weight;  // w_σ
+  weight = options.weight0 > 0.0 ? options.weight0 : 0.5 * options.penalty0 * P.metric_stiffness();
+  result.history.push_back({0, weight, 0.0, result.fit_error, result.min_det});
   if (P.n_free() == 0 || result.fit_error <= options.eps_sigma) {
     result.converged = result.fit_error <= options.eps_sigma;
     result.message = result.converged ? "fitted" : "no node is free to move";
@@ -42,7 +43,7 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   double error = result.fit_error;
   bool done = false;
   const auto raise = [&] {
-    P.weight *= options.alpha_sigma;
+    weight *= options.alpha_sigma;
     ++result.weight_updates;
     ++raises;
   };
@@ -51,8 +52,8 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   no.on_step = [&](int, double alpha) {
     ++steps;
     const double e = P.fit_error();
-    result.history.push_back({steps, P.weight, alpha, e, P.min_det()});
-    log_progress(format("fit: Newton %d: max |sigma| %.3g, w %.3g, alpha %.3g", steps, e, P.weight, alpha));
+    result.history.push_back({steps, weight, alpha, e, P.min_det()});
+    log_progress(format("fit: Newton %d: max |sigma| %.3g, w %.3g, alpha %.3g", steps, e, weight, alpha));
     if (options.adaptive && (error - e) < options.eps_dsigma * e) {
       raise();
       P.remember_current();
@@ -91,7 +92,7 @@ FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<
   if (result.converged) result.message = "fitted: max |sigma| " + format("%.3g", result.fit_error);
   else if (result.message.empty())
     result.message = format("max |sigma| %.3g above eps_sigma %.3g after %d Newton steps (w %.3g)", result.fit_error,
-                            options.eps_sigma, steps, P.weight);
+                            options.eps_sigma, steps, weight);
   return result;
 }
 

@@ -37,7 +37,7 @@ void check_metrics() {
       const HessT<d> H = metric->eval(T, Want::Hessian).d2mu_dT2;
       HessT<d> fast = H, general = H;
       detail::project_isotropic<d>(T, fast);
-      project_spd<d>(general);
+      project_spd(general);
       const double scale = H.norm();
       EXPECT_LE((fast - general).norm(), 1e-9 * scale) << "T =\n" << T;
       const Eigen::SelfAdjointEigenSolver<HessT<d>> eig(fast);
@@ -60,7 +60,7 @@ TEST(ProjectIsotropic, FallsBackForNonIsotropicHessians) {
   const MatT<3> T = random_T<3>(rng, 1.0);
   HessT<3> fast = H, general = H;
   detail::project_isotropic<3>(T, fast);
-  project_spd<3>(general);
+  project_spd(general);
   EXPECT_EQ((fast - general).norm(), 0.0);
 }
 

@@ -89,7 +89,7 @@ TEST(FitProblem, GradientAndHessianMatchDifferences) {
   const std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
   FitOptions o;
   FitProblem<2> P(mesh, topo, terms, fixed, o, mesh.x);
-  P.weight = 7.0;
+  P.penalty().weight = 7.0;
   Assembly a;
   P.evaluate(HessianMode::Exact, a);
   const Eigen::Index n = a.gradient.size();
@@ -103,7 +103,7 @@ TEST(FitProblem, GradientAndHessianMatchDifferences) {
     const double fd = (P.trial_value(e, h) - P.trial_value(e, -h)) / (2 * h);
     EXPECT_NEAR(a.gradient[i], fd, 1e-6 * std::max(1.0, std::abs(fd))) << i;
     FitProblem<2> plus(mesh, topo, terms, fixed, o, mesh.x), minus(mesh, topo, terms, fixed, o, mesh.x);
-    plus.weight = minus.weight = P.weight;
+    plus.penalty().weight = minus.penalty().weight = P.penalty().weight;
     plus.accept(e, h);
     minus.accept(e, -h);
     Assembly ap, am;

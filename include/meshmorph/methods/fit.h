@@ -6,18 +6,13 @@
 
 #include <Eigen/Core>
 
+#include "meshmorph/energy/level_set_penalty.h"
 #include "meshmorph/energy/target.h"
 #include "meshmorph/geometry/level_set_function.h"
 #include "meshmorph/mesh/topology.h"
 #include "meshmorph/solve/linear_solver.h"
 
 namespace meshmorph {
-
-/// Nodes to be fitted to the zero level set of one function (paper 003 eq. 8: the set S).
-struct FitTerm {
-  LevelSetFunction sigma;
-  std::vector<std::int32_t> nodes;  ///< sorted, unique
-};
 
 /// Material indicators of eq. 10: η_E = 0 where ∫_E σ ≥ 0, 1 otherwise (global cell order),
 /// the integral by the metric quadrature of each cell.

@@ -76,7 +76,7 @@ void project_isotropic(const MatT<d>& T, HessT<d>& H) {
     for (int r = 0; r < N; ++r)
       if (group[r] != group[c]) off += M(r, c) * M(r, c);
   if (!(off <= 1e-24 * M.squaredNorm())) {  // not isotropic (or not finite): general route
-    project_spd<d>(H);
+    project_spd(H);
     return;
   }
   bool clamped = false;

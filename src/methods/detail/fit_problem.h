@@ -7,34 +7,27 @@
 #include <Eigen/Core>
 
 #include "meshmorph/energy/assembler.h"
+#include "meshmorph/energy/level_set_penalty.h"
+#include "meshmorph/energy/slide_constraints.h"
 #include "meshmorph/methods/fit.h"
 #include "meshmorph/solve/newton.h"
 
 namespace meshmorph {
 
-/// Paper 003 eq. 8 as a NewtonProblem: F(x) = Σ_E ∫_{E_t} μ(A W⁻¹) + w_σ Σ_terms Σ_{s∈S} σ(x_s)².
-/// The penalty's gradient is 2w σ ∇σ and its Hessian 2w(∇σ∇σᵀ + σ∇²σ) on the d×d block of
-/// each fitted node (eq. 16 with nodal basis functions; its SPD projection in Projected
-/// mode). admissible() applies the line-search rules of §2.2 and §3.4: det A > 0 at every
-/// validity sample, min det A > det_floor · its initial value (eq. 15), |∇F| and max |σ|
-/// grown by less than `growth` (eq. 14); F itself only decreases (Armijo).
+/// Paper 003 eq. 8 as a NewtonProblem: F(x) = Σ_E ∫_{E_t} μ(A W⁻¹) + F_σ(x), the metric
+/// integral plus the level-set penalty (energy/level_set_penalty.h). admissible() applies
+/// the line-search rules of §2.2 and §3.4: det A > 0 at every validity sample, min det A >
+/// det_floor · its initial value (eq. 15), |∇F| and max |σ| grown by less than `growth`
+/// (eq. 14); F itself only decreases (Armijo).
 ///
-/// Sliding (optimize): the nodes of each `slides` entry stay on its zero level set (a node
-/// in two entries on their intersection; all its DOFs must be free). With N an orthonormal
-/// basis of the constraint normals ∇σ_i at a slide node and P = I − N Nᵀ, the gradient there
-/// is P g, the Hessian's rows and columns of the node are multiplied by P, and its diagonal
-/// block gets c N Nᵀ (c its mean tangential diagonal, so the normal step is exactly 0) plus
-/// the constraint curvature −Σ λ_i P ∇²σ_i P with g = Σ λ_i ∇σ_i + P g (the Hessian of the
-/// Lagrangian on the tangent space; PSD-clamped in Projected mode). Trial points are
-/// projected back onto the constraints by Gauss–Newton (minimal-norm corrections). A node on
-/// one level set takes N and its share of |∇F| from it (step_normals, stationarity): ∇σ and
-/// |P g| but at the creases of a facet surface (geometry/facet_surface.h).
+/// Sliding (optimize): the nodes of each `slides` entry stay on its zero level set
+/// (energy/slide_constraints.h: gradient, Hessian and |∇F| constrained by the nodes' frames,
+/// trial points returned onto the level sets).
 ///
 /// Matrix-free (evaluate_action(), for newton_matrix_free()): the metric Hessian as an
-/// operator (EnergyAssembler::prepare_hessian), slides applied as above to its action
-/// (P H P v plus the diagonal blocks' additions), without fitted nodes (throws
-/// std::invalid_argument otherwise). Constructed with `matrix_free`, the problem holds no
-/// sparse pattern and evaluate() throws.
+/// operator (EnergyAssembler::prepare_hessian), slides applied to its action (P H P v plus
+/// the frames' additions), without fitted nodes (throws std::invalid_argument otherwise).
+/// Constructed with `matrix_free`, the problem holds no sparse pattern and evaluate() throws.
 template <int d>
 class FitProblem final : public MatrixFreeNewtonProblem {
  public:
@@ -45,10 +38,11 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   std::size_t n_free() const { return dofs_.n_free(); }
   const DofMap& dofs() const { return dofs_; }
   const Eigen::MatrixXd& state() const { return x_; }
-  double weight = 1.0;  ///< w_σ
+  /// The level-set penalty F_σ; its `weight` is w_σ.
+  LevelSetPenalty<d>& penalty() { return penalty_; }
 
   /// max |σ(x_s)| over every term's nodes at x.
-  double fit_error(const Eigen::MatrixXd& x) const;
+  double fit_error(const Eigen::MatrixXd& x) const { return penalty_.max_error(x); }
   double fit_error() const { return fit_error(x_); }
   /// min det A over the validity samples of every cell at x (without the flat-edge samples
   /// when options.flat_edges).
@@ -63,7 +57,7 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   /// scale of F's rounding error (μ + 1 is O(1) per point for the TMOP metrics).
   double target_measure() const;
   /// F at the current iterate.
-  double energy() const { return assembler_->value(*metric_, x_, {}, options_.threads) + penalty_value(x_); }
+  double energy() const { return assembler_->value(*metric_, x_, {}, options_.threads) + penalty_.value(x_); }
   /// Value and gradient norm of F at x (the line search's reference).
   void remember_current();
   /// |∇F| over the free DOFs at the iterate of the last remember_current().
@@ -85,42 +79,20 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   bool coarse_hessian(CoarseHessian& out) override;
 
  private:
-  void add_penalty(const Eigen::MatrixXd& x, Want want, HessianMode mode, Assembly& out);
   // |∇F| over the free DOFs; `metric` gets the metric term's value and gradient at x.
   double gradient_norm(const Eigen::MatrixXd& x, Assembly& metric);
-  double penalty_value(const Eigen::MatrixXd& x) const;
-  void bind_blocks(const Eigen::SparseMatrix<double>& H);
-  std::vector<std::int64_t> node_blocks(const Eigen::SparseMatrix<double>& H, const std::vector<std::int32_t>& nodes) const;
-  // Slide constraints of one node: the level sets it lies on (1 or 2, < d).
-  struct SlideNode {
-    std::int32_t node = 0, first = 0;  // node, reduced index of its first DOF
-    int m = 0;
-    std::array<const LevelSetFunction*, 2> sigma{};
-  };
-  static Eigen::Matrix<double, d, Eigen::Dynamic> orthonormal(Eigen::Matrix<double, d, Eigen::Dynamic> N);  // of span N
-  Eigen::Matrix<double, d, Eigen::Dynamic> normals(const SlideNode& s, const Eigen::MatrixXd& x) const;
-  bool project_slides(Eigen::MatrixXd& x) const;  // false when a node cannot be projected
-  // A slide node's step constraints: N (the normals that bind its step), P = I − N Nᵀ and
-  // the addition to its diagonal block K + c N Nᵀ (constraint curvature, normal stiffness),
-  // from its unconstrained diagonal block B and gradient g at the current iterate.
-  struct SlideFrame {
-    Eigen::Matrix<double, d, Eigen::Dynamic> N;
-    Eigen::Matrix<double, d, d> P, add;
-  };
-  SlideFrame slide_frame(const SlideNode& s, const Eigen::Matrix<double, d, d>& B, const Eigen::Matrix<double, d, 1>& g,
-                         HessianMode mode) const;
-  void constrain_hessian(HessianMode mode, Assembly& out);
   bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
 
   // min det A of one cell at x; `all` includes its flat-edge samples.
   double cell_min_det(std::size_t block, std::size_t cell, const Eigen::MatrixXd& x, bool all) const;
 
   const Mesh* mesh_;
-  const std::vector<FitTerm>* terms_;
   FitOptions options_;
   FlatEdges flat_;  // empty unless options.flat_edges
   TargetField<d> targets_;
   DofMap dofs_;
+  LevelSetPenalty<d> penalty_;
+  SlideConstraints<d> slides_;
   std::unique_ptr<EnergyAssembler<d>> assembler_;
   std::unique_ptr<Metric<d>> metric_;
   HessianAction<d> action_;  // of the last evaluate_action()
@@ -128,15 +100,7 @@ class FitProblem final : public MatrixFreeNewtonProblem {
   // or where no coarse DOF is left).
   std::unique_ptr<CoarseSpace<d>> coarse_;
   std::vector<double> node_blocks_;  // its node blocks (EnergyAssembler::hessian_blocks)
-  std::vector<SlideFrame> frames_;   // of each slide node, at the last evaluate() or evaluate_action()
-  Eigen::VectorXd slide_v_;          // apply_hessian's projected v
-  // Offsets of the d×d diagonal block entries (k, l) of each fitted node (term by term) in
-  // the Hessian's value array, −1 for a fixed DOF.
-  std::vector<std::int64_t> block_offsets_;
-  std::vector<LevelSetFunction> slide_sigma_;
-  std::vector<SlideNode> slides_;
-  std::vector<std::int32_t> slide_of_row_;  // reduced index of a slide node's first DOF → slot, else −1
-  std::vector<std::int64_t> slide_offsets_;  // the d×d diagonal block of each slide node, as block_offsets_
+  Eigen::VectorXd slide_v_;          // apply_hessian's tangential v
   // F, min det A and |∇F| at the point x + α p that trial_value() and admissible() measured
   // (admitted_, in trial_; `admitted` once admissible() passed it) and at the accepted one.
   struct Measured {
