@@ -138,7 +138,7 @@ RunOutput OptimizeRunner::run() const {
   BoundaryTargets none;
   none.role.assign(input_.n_nodes(), NodeRole::Free);
   out.quality = detail::fill_result(report, out.moved, initial_inverted_ == 0 ? &input_ : nullptr, none);
-  report.boundary_error_max = slide_error(constraints_.slides, x);
+  report.boundary_error_max = fit_error(constraints_.slides, x);
   report.boundary_error_l2.reset();
 
   const int d = input_.dim;

@@ -9,10 +9,9 @@
 
 namespace meshmorph {
 
-template <int d>
-double LevelSetPenalty<d>::max_error(const Eigen::MatrixXd& x) const {
+double fit_error(const std::vector<FitTerm>& terms, const Eigen::MatrixXd& x) {
   double e = 0.0;
-  for (const FitTerm& t : *terms_)
+  for (const FitTerm& t : terms)
     for (std::int32_t s : t.nodes) e = std::max(e, std::abs(t.sigma.value(x.col(s))));
   return e;
 }
@@ -42,14 +41,15 @@ void LevelSetPenalty<d>::add_to(const Eigen::MatrixXd& x, Want want, HessianMode
   for (const FitTerm& t : *terms_)
     for (std::int32_t s : t.nodes) {
       const Eigen::Matrix<double, d, 1> p = x.col(s);
-      const double sigma = t.sigma.value(p);
-      const Eigen::Matrix<double, d, 1> g = t.sigma.gradient(p);
+      const LevelSetPoint at = t.sigma.at(p);  // one search for all three on a facet surface
+      const double sigma = at.value();
+      const Eigen::Matrix<double, d, 1> g = at.gradient();
       for (int k = 0; k < d; ++k) {
         const std::int32_t i = dofs_->reduced(static_cast<std::size_t>(d) * s + k);
         if (i >= 0) out.gradient[i] += 2.0 * weight * sigma * g(k);
       }
       if (!values) continue;
-      Eigen::Matrix<double, d, d> H = 2.0 * weight * (g * g.transpose() + sigma * Eigen::Matrix<double, d, d>(t.sigma.hessian(p)));
+      Eigen::Matrix<double, d, d> H = 2.0 * weight * (g * g.transpose() + sigma * Eigen::Matrix<double, d, d>(at.hessian()));
       if (mode == HessianMode::Projected) project_spd(H);
       for (int l = 0; l < d; ++l)
         for (int k = 0; k < d; ++k, ++e)

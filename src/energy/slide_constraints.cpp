@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -91,9 +92,9 @@ bool SlideConstraints<d>::project(Eigen::MatrixXd& x, int threads) const {
       Eigen::Matrix<double, Eigen::Dynamic, d> J(s.m, d);
       Eigen::VectorXd r(s.m);
       for (int i = 0; i < s.m; ++i) {
-        const LevelSetFunction& sigma = sigma_[static_cast<std::size_t>(s.sigma[static_cast<std::size_t>(i)])];
-        r[i] = sigma.value(p);
-        J.row(i) = sigma.gradient(p).transpose();
+        const LevelSetPoint at = sigma_[static_cast<std::size_t>(s.sigma[static_cast<std::size_t>(i)])].at(p);
+        r[i] = at.value();
+        J.row(i) = at.gradient().transpose();
       }
       const Eigen::Matrix<double, d, 1> dx = -J.transpose() * (J * J.transpose()).ldlt().solve(r);
       if (!dx.allFinite()) break;
@@ -115,13 +116,15 @@ typename SlideConstraints<d>::Frame SlideConstraints<d>::frame(const Node& s, co
   // Each level set's questions in a row: a facet surface answers them from one search.
   Eigen::Matrix<double, d, Eigen::Dynamic> J(d, s.m);  // the ∇σ_i
   std::array<Eigen::Matrix<double, d, d>, 2> curvature;  // the ∇²σ_i
+  std::optional<LevelSetPoint> first;
   for (std::size_t i = 0; i < static_cast<std::size_t>(s.m); ++i) {
-    const LevelSetFunction& sigma = sigma_[static_cast<std::size_t>(s.sigma[i])];
-    J.col(static_cast<Eigen::Index>(i)) = sigma.gradient(p);
-    curvature[i] = sigma.hessian(p);
+    const LevelSetPoint at = sigma_[static_cast<std::size_t>(s.sigma[i])].at(p);
+    J.col(static_cast<Eigen::Index>(i)) = at.gradient();
+    curvature[i] = at.hessian();
+    if (i == 0) first = at;
   }
   // One surface: its level set says which normals bind the step (more at a crease it keeps to).
-  if (s.m == 1) f.N = sigma_[static_cast<std::size_t>(s.sigma[0])].step_normals(p, g);
+  if (s.m == 1) f.N = first->step_normals(g);
   else f.N = orthonormal<d>(J);
   f.P = Eigen::Matrix<double, d, d>::Identity() - f.N * f.N.transpose();
   const Eigen::VectorXd lambda = (J.transpose() * J).ldlt().solve(J.transpose() * g);

@@ -2,7 +2,6 @@
 #include "meshmorph/methods/optimize_boundary.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -141,13 +140,6 @@ Eigen::MatrixXd untangled_start(const Mesh& mesh, const Topology& topology, int 
   if (count_invalid_cells(moved) > 0)
     throw InputError(where + ": the mesh is tangled and untangling with its boundary fixed failed: " + r.message);
   return x;
-}
-
-double slide_error(const std::vector<FitTerm>& slides, const Eigen::MatrixXd& x) {
-  double error = 0.0;
-  for (const FitTerm& t : slides)
-    for (std::int32_t node : t.nodes) error = std::max(error, std::abs(t.sigma.value(x.col(node))));
-  return error;
 }
 
 }  // namespace meshmorph

@@ -18,6 +18,10 @@ struct FitTerm {
   std::vector<std::int32_t> nodes;  ///< sorted, unique
 };
 
+/// max |σ(x_s)| over the nodes of every term at x (d × n_nodes): their distance from their
+/// surfaces (paper 003 eq. 14's fit error); 0 without nodes.
+double fit_error(const std::vector<FitTerm>& terms, const Eigen::MatrixXd& x);
+
 /// The level-set penalty of paper 003 eq. 8: F_σ(x) = w_σ Σ_terms Σ_{s∈S} σ(x_s)². Its
 /// gradient at a fitted node is 2w σ ∇σ and its Hessian the d×d diagonal block
 /// 2w(∇σ∇σᵀ + σ∇²σ) (eq. 16 with nodal basis functions), projected onto the PSD cone
@@ -32,8 +36,8 @@ class LevelSetPenalty {
   double weight = 1.0;  ///< w_σ
   const std::vector<FitTerm>& terms() const { return *terms_; }
 
-  /// max |σ(x_s)| over every term's nodes at x (d × n_nodes); 0 without nodes.
-  double max_error(const Eigen::MatrixXd& x) const;
+  /// fit_error(terms(), x).
+  double max_error(const Eigen::MatrixXd& x) const { return fit_error(*terms_, x); }
   /// F_σ(x).
   double value(const Eigen::MatrixXd& x) const;
   /// Adds F_σ and, as `want` asks, its gradient and Hessian to an Assembly over the free DOFs

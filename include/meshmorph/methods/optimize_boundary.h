@@ -55,7 +55,4 @@ OptimizeConstraints optimize_constraints(Mesh& start, const Topology& topology, 
 Eigen::MatrixXd untangled_start(const Mesh& mesh, const Topology& topology, int threads, const std::string& where,
                                 long long& newton);
 
-/// max |σ| over the nodes of `slides` at `x` (d × n): their distance from their surfaces.
-double slide_error(const std::vector<FitTerm>& slides, const Eigen::MatrixXd& x);
-
 }  // namespace meshmorph
