@@ -74,10 +74,7 @@ int main(int argc, char** argv) {
   meshmorph::add_quality_command(app, run);
   meshmorph::add_convert_command(app, run);
   meshmorph::add_check_command(app, run);
-  meshmorph::add_morph_command(app, run, common.threads);
-  meshmorph::add_untangle_command(app, run, common.threads);
-  meshmorph::add_fit_command(app, run, common.threads);
-  meshmorph::add_deform_command(app, run, common.threads);
+  meshmorph::add_method_commands(app, run, common.threads);
   meshmorph::add_optimize_command(app, run, common.threads);
   app.require_subcommand(1);
 

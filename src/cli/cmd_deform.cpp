@@ -16,28 +16,28 @@
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
-namespace {
+namespace detail {
 
-Outcome run_deform(const detail::MethodArgs& a, int threads, std::ostream& out) {
+Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   const DeformRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = detail::output_path(a.output, &c, a.input);
-  const auto report_path = detail::report_path(a.report, &c);
-  detail::check_outputs(&c, output, report_path);
+  const auto output = output_path(a.output, &c, a.input);
+  const auto report_file = report_path(a.report, &c);
+  check_outputs(&c, output, report_file);
 
   int step_files = 0;
   DeformOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && output) detail::write_step_mesh(*output, step, mesh, step_files);
+    if (c.output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
   });
-  detail::write_run(run, output, report_path, a.input, seconds_since(start));
+  write_run(run, output, report_file, a.input, seconds_since(start));
 
   const nlohmann::ordered_json& extra = run.extra;
   const IterationCounts& counts = *run.report.iterations;
   char line[200];
   out << "deform   " << a.input << " (" << extra["deform_method"].get<std::string>() << (runner.options().cvt ? " + CVT" : "")
       << ")\n"
-      << detail::mesh_line(runner.input()) << "; " << run.design_nodes << " design nodes\n";
+      << mesh_line(runner.input()) << "; " << run.design_nodes << " design nodes\n";
   std::snprintf(line, sizeof line, "work     %d step%s, %d CVT iterations, %lld Newton steps, %lld linear solves\n", c.steps,
                 c.steps > 1 ? "s" : "", extra["cvt_iterations"].get<int>(), counts.newton, counts.linear);
   out << line;
@@ -48,17 +48,8 @@ Outcome run_deform(const detail::MethodArgs& a, int threads, std::ostream& out) 
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f, min shape %.4f; inverted %zu\n", run.quality.min_quality,
                 run.quality.mean_quality, run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return detail::print_result(out, run.report, output, step_files);
+  return print_result(out, run.report, output, step_files);
 }
 
-}  // namespace
-
-void add_deform_command(CLI::App& app, Command& run, const int& threads) {
-  detail::add_method_command(app, run, threads,
-                             {"deform", "CVT surface repair and Eikonal convection deformation (paper 004)", "CASE",
-                              "Case file (JSON, docs/case-file.md, docs/deform.md)",
-                              "Output mesh (overrides the case's \"output\")"},
-                             std::make_shared<detail::MethodArgs>(), &run_deform);
-}
-
+}  // namespace detail
 }  // namespace meshmorph

@@ -15,24 +15,24 @@
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
-namespace {
+namespace detail {
 
-Outcome run_fit(const detail::MethodArgs& a, int threads, std::ostream& out) {
+Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   const FitRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = detail::output_path(a.output, &c, a.input);
-  const auto report_path = detail::report_path(a.report, &c);
-  detail::check_outputs(&c, output, report_path);
+  const auto output = output_path(a.output, &c, a.input);
+  const auto report_file = report_path(a.report, &c);
+  check_outputs(&c, output, report_file);
 
   RunOutput run = runner.run();
-  detail::write_run(run, output, report_path, a.input, seconds_since(start));
+  write_run(run, output, report_file, a.input, seconds_since(start));
 
   const Report& report = run.report;
   const FitSetup& setup = runner.setup();
   char line[200];
   out << "fit      " << a.input << "\n"
-      << detail::mesh_line(setup.mesh) << "; " << run.extra["fitted_nodes"].get<std::size_t>() << " fitted nodes"
+      << mesh_line(setup.mesh) << "; " << run.extra["fitted_nodes"].get<std::size_t>() << " fitted nodes"
       << (setup.split_cells ? ", " + std::to_string(setup.split_cells) + " cells split" : std::string()) << "\n";
   std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld weight increases, %lld linear solves\n",
                 report.iterations->newton, report.iterations->outer, report.iterations->linear);
@@ -43,17 +43,8 @@ Outcome run_fit(const detail::MethodArgs& a, int threads, std::ostream& out) {
   out << line;
   if (runner.settings().fit.flat_edges)
     out << "flat     " << run.extra["flat_edge_cells"].get<std::size_t>() << " cells with det J <= 0 only on their flat edges\n";
-  return detail::print_result(out, report, output);
+  return print_result(out, report, output);
 }
 
-}  // namespace
-
-void add_fit_command(CLI::App& app, Command& run, const int& threads) {
-  detail::add_method_command(app, run, threads,
-                             {"fit", "Fit the mesh's interface or boundary to a level set (paper 003)", "CASE",
-                              "Case file (JSON, see docs/case-file.md)",
-                              "Output mesh (overrides the case's \"output\")"},
-                             std::make_shared<detail::MethodArgs>(), &run_fit);
-}
-
+}  // namespace detail
 }  // namespace meshmorph

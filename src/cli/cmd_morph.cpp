@@ -16,25 +16,25 @@
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
-namespace {
+namespace detail {
 
-Outcome run_morph(const detail::MethodArgs& a, int threads, std::ostream& out) {
+Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   MorphRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = detail::output_path(a.output, &c, a.input);
-  const auto report_path = detail::report_path(a.report, &c);
-  detail::check_outputs(&c, output, report_path);
+  const auto output = output_path(a.output, &c, a.input);
+  const auto report_file = report_path(a.report, &c);
+  check_outputs(&c, output, report_file);
 
   int step_files = 0;
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && output) detail::write_step_mesh(*output, step, mesh, step_files);
+    if (c.output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
   });
-  detail::write_run(run, output, report_path, a.input, seconds_since(start));
+  write_run(run, output, report_file, a.input, seconds_since(start));
 
   const Report& report = run.report;
   const std::size_t guarded = run.extra.value("guarded_cells", std::size_t{0});
-  out << "morph    " << a.input << " (" << report.method << ")\n" << detail::mesh_line(runner.input()) << "\n";
+  out << "morph    " << a.input << " (" << report.method << ")\n" << mesh_line(runner.input()) << "\n";
   out << "work     " << report.iterations->outer << " AL iterations, " << report.iterations->nonlinear
       << " nonlinear solves, " << report.iterations->newton << " Newton steps, " << report.iterations->linear
       << " linear solves" << (run.krylov > 0 ? " (" + std::to_string(run.krylov) + " CG iterations)" : std::string())
@@ -46,17 +46,8 @@ Outcome run_morph(const detail::MethodArgs& a, int threads, std::ostream& out) {
   out << line;
   std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", *report.boundary_error_max, *report.boundary_error_l2);
   out << line;
-  return detail::print_result(out, report, output, step_files);
+  return print_result(out, report, output, step_files);
 }
 
-}  // namespace
-
-void add_morph_command(CLI::App& app, Command& run, const int& threads) {
-  detail::add_method_command(app, run, threads,
-                             {"morph", "Move the mesh to follow a prescribed boundary motion (paper 000)", "CASE",
-                              "Case file (JSON, see docs/case-file.md)",
-                              "Output mesh (overrides the case's \"output\")"},
-                             std::make_shared<detail::MethodArgs>(), &run_morph);
-}
-
+}  // namespace detail
 }  // namespace meshmorph

@@ -16,28 +16,28 @@
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
-namespace {
+namespace detail {
 
-Outcome run_untangle(const detail::MethodArgs& a, int threads, std::ostream& out) {
+Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
-  const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
+  const std::optional<CaseFile> c = case_or_mesh(a.input);
   const CaseFile& run_case = c ? *c : bare_case(a.input);
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
-  const auto output = detail::output_path(a.output, c ? &*c : nullptr, a.input, "_untangled");
-  const auto report_path = detail::report_path(a.report, c ? &*c : nullptr);
-  detail::check_outputs(c ? &*c : nullptr, output, report_path);
+  const auto output = output_path(a.output, c ? &*c : nullptr, a.input, "_untangled");
+  const auto report_file = report_path(a.report, c ? &*c : nullptr);
+  check_outputs(c ? &*c : nullptr, output, report_file);
 
   int step_files = 0;
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c && c->output_each_step && output) detail::write_step_mesh(*output, step, mesh, step_files);
+    if (c && c->output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
   });
-  detail::write_run(run, output, report_path, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
+  write_run(run, output, report_file, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
 
   const IterationCounts& counts = *run.report.iterations;
   const int steps = run.extra["steps"].get<int>();
   char line[200];
   out << "untangle " << a.input << " (reference " << run.extra["reference"].get<std::string>() << ")\n"
-      << detail::mesh_line(runner.input()) << "; " << run.extra["initial_inverted_elements"].get<std::size_t>()
+      << mesh_line(runner.input()) << "; " << run.extra["initial_inverted_elements"].get<std::size_t>()
       << " inverted once the boundary is placed\n";
   std::snprintf(line, sizeof line, "work     %d step%s, %lld Newton steps, %lld delta updates, %lld linear solves\n",
                 steps, steps > 1 ? "s" : "", counts.newton, counts.outer, counts.linear);
@@ -45,17 +45,8 @@ Outcome run_untangle(const detail::MethodArgs& a, int threads, std::ostream& out
   std::snprintf(line, sizeof line, "quality  q_min (eq. 3) %.4f, min shape quality %.4f; inverted %zu\n",
                 run.extra["min_edge_quality"].get<double>(), run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return detail::print_result(out, run.report, output, step_files);
+  return print_result(out, run.report, output, step_files);
 }
 
-}  // namespace
-
-void add_untangle_command(CLI::App& app, Command& run, const int& threads) {
-  detail::add_method_command(app, run, threads,
-                             {"untangle", "Untangle and smooth a mesh after a boundary motion (paper 001)", "INPUT",
-                              "Case file (JSON, docs/case-file.md) or a mesh whose boundary stays fixed",
-                              "Output mesh (default: the case's \"output\"; for a mesh, NAME_untangled.EXT)"},
-                             std::make_shared<detail::MethodArgs>(), &run_untangle);
-}
-
+}  // namespace detail
 }  // namespace meshmorph

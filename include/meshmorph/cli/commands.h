@@ -34,15 +34,10 @@ void apply_common_options(const CommonOptions& options);
 void add_quality_command(CLI::App& app, Command& run);
 /// `meshmorph convert IN OUT [--order P] [--binary] [--msh22]`; sets `run` when chosen.
 void add_convert_command(CLI::App& app, Command& run);
-/// `meshmorph morph CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1); `threads` is read when
-/// the command runs (the common --threads option).
-void add_morph_command(CLI::App& app, Command& run, const int& threads);
-/// `meshmorph untangle CASE.json | MESH [-o OUT] [--report FILE]` (DESIGN §3.1).
-void add_untangle_command(CLI::App& app, Command& run, const int& threads);
-/// `meshmorph fit CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1).
-void add_fit_command(CLI::App& app, Command& run, const int& threads);
-/// `meshmorph deform CASE.json [-o OUT] [--report FILE]` (DESIGN §3.1).
-void add_deform_command(CLI::App& app, Command& run, const int& threads);
+/// `meshmorph morph`, `untangle`, `fit` and `deform` CASE.json [-o OUT] [--report FILE]
+/// (DESIGN §3.1; untangle also takes a bare mesh); `threads` is read when the command runs
+/// (the common --threads option).
+void add_method_commands(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph optimize MESH | CASE.json [-o OUT] [--report FILE] [--metric M] [--target T]
 /// [--boundary fixed|slide]`: TMOP mesh optimization (docs/optimize.md).
 void add_optimize_command(CLI::App& app, Command& run, const int& threads);

@@ -42,4 +42,10 @@ CLI::App* add_method_command(CLI::App& app, Command& run, const int& threads, co
   return cmd;
 }
 
+/// The runs of the subcommands of add_method_commands (cli/cmd_<name>.cpp).
+Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out);
+Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out);
+Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out);
+Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out);
+
 }  // namespace meshmorph::detail
