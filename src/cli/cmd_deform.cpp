@@ -22,15 +22,13 @@ Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   const DeformRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = output_path(a.output, &c, a.input);
-  const auto report_file = report_path(a.report, &c);
-  check_outputs(&c, output, report_file);
+  const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
   int step_files = 0;
   DeformOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
+    if (c.output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
   });
-  write_run(run, output, report_file, a.input, seconds_since(start));
+  write_run(run, files, seconds_since(start));
 
   const nlohmann::ordered_json& extra = run.extra;
   const IterationCounts& counts = *run.report.iterations;
@@ -48,7 +46,7 @@ Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f, min shape %.4f; inverted %zu\n", run.quality.min_quality,
                 run.quality.mean_quality, run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return print_result(out, run.report, output, step_files);
+  return print_result(out, run.report, files.output, step_files);
 }
 
 }  // namespace detail

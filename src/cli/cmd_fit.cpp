@@ -21,12 +21,10 @@ Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   const FitRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = output_path(a.output, &c, a.input);
-  const auto report_file = report_path(a.report, &c);
-  check_outputs(&c, output, report_file);
+  const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
   RunOutput run = runner.run();
-  write_run(run, output, report_file, a.input, seconds_since(start));
+  write_run(run, files, seconds_since(start));
 
   const Report& report = run.report;
   const FitSetup& setup = runner.setup();
@@ -43,7 +41,7 @@ Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out) {
   out << line;
   if (runner.settings().fit.flat_edges)
     out << "flat     " << run.extra["flat_edge_cells"].get<std::size_t>() << " cells with det J <= 0 only on their flat edges\n";
-  return print_result(out, report, output);
+  return print_result(out, report, files.output);
 }
 
 }  // namespace detail

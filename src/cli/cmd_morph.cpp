@@ -22,15 +22,13 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const CaseFile c = read_case_file(a.input);
   MorphRunner runner(c, read_mesh(c.mesh), threads);
-  const auto output = output_path(a.output, &c, a.input);
-  const auto report_file = report_path(a.report, &c);
-  check_outputs(&c, output, report_file);
+  const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
   int step_files = 0;
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
+    if (c.output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
   });
-  write_run(run, output, report_file, a.input, seconds_since(start));
+  write_run(run, files, seconds_since(start));
 
   const Report& report = run.report;
   const std::size_t guarded = run.extra.value("guarded_cells", std::size_t{0});
@@ -46,7 +44,7 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   out << line;
   std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", *report.boundary_error_max, *report.boundary_error_l2);
   out << line;
-  return print_result(out, report, output, step_files);
+  return print_result(out, report, files.output, step_files);
 }
 
 }  // namespace detail

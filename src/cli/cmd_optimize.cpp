@@ -33,12 +33,11 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   if (threads > 0) omp_set_num_threads(threads);
   const OptimizeRunner runner(c ? *c : bare_case(a.input), std::move(mesh), threads,
                               OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
-  const auto output = detail::output_path(a.output, c ? &*c : nullptr, a.input, "_optimized");
-  const auto report_path = detail::report_path(a.report, c ? &*c : nullptr);
-  detail::check_outputs(c ? &*c : nullptr, output, report_path);  // every input is read by now
+  // Every input is read by now.
+  const detail::RunFiles files = detail::run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_optimized");
 
   RunOutput run = runner.run();
-  detail::write_run(run, output, report_path, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
+  detail::write_run(run, files, seconds_since(start));
 
   const nlohmann::ordered_json& extra = run.extra;
   const std::size_t inverted = runner.initial_inverted();
@@ -57,7 +56,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
                 extra["mu_mean"].get<double>(), extra["mu_max"].get<double>(), extra["min_det_initial"].get<double>(),
                 extra["min_det_final"].get<double>(), run.quality.inverted_elements);
   out << line;
-  return detail::print_result(out, run.report, output);
+  return detail::print_result(out, run.report, files.output);
 }
 
 }  // namespace

@@ -23,15 +23,13 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   const std::optional<CaseFile> c = case_or_mesh(a.input);
   const CaseFile& run_case = c ? *c : bare_case(a.input);
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
-  const auto output = output_path(a.output, c ? &*c : nullptr, a.input, "_untangled");
-  const auto report_file = report_path(a.report, c ? &*c : nullptr);
-  check_outputs(c ? &*c : nullptr, output, report_file);
+  const RunFiles files = run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_untangled");
 
   int step_files = 0;
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c && c->output_each_step && output) write_step_mesh(*output, step, mesh, step_files);
+    if (c && c->output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
   });
-  write_run(run, output, report_file, c ? std::optional(a.input) : std::nullopt, seconds_since(start));
+  write_run(run, files, seconds_since(start));
 
   const IterationCounts& counts = *run.report.iterations;
   const int steps = run.extra["steps"].get<int>();
@@ -45,7 +43,7 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  q_min (eq. 3) %.4f, min shape quality %.4f; inverted %zu\n",
                 run.extra["min_edge_quality"].get<double>(), run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return print_result(out, run.report, output, step_files);
+  return print_result(out, run.report, files.output, step_files);
 }
 
 }  // namespace detail

@@ -90,27 +90,27 @@ std::optional<CaseFile> case_or_mesh(const std::string& input) {
   return std::nullopt;
 }
 
-std::optional<std::filesystem::path> output_path(const std::string& option, const CaseFile* c, const std::string& input,
-                                                 const std::string& suffix) {
-  if (!option.empty()) return std::filesystem::path(option);
-  if (c) return c->output;
-  if (suffix.empty()) return std::nullopt;
-  const std::filesystem::path in(input);
-  return in.parent_path() / (in.stem().string() + suffix + in.extension().string());
+RunFiles run_files(const std::string& output, const std::string& report, const CaseFile* c, const std::string& input,
+                   const std::string& suffix) {
+  RunFiles f;
+  if (!output.empty()) f.output = output;
+  else if (c) f.output = c->output;
+  else if (!suffix.empty()) {
+    const std::filesystem::path in(input);
+    f.output = in.parent_path() / (in.stem().string() + suffix + in.extension().string());
+  }
+  if (!report.empty()) f.report = report;
+  else if (c) f.report = c->report;
+  if (c) f.case_file = input;
+  check_outputs(c, f.output, f.report);
+  return f;
 }
 
-std::optional<std::filesystem::path> report_path(const std::string& option, const CaseFile* c) {
-  if (!option.empty()) return std::filesystem::path(option);
-  if (c) return c->report;
-  return std::nullopt;
-}
-
-void write_run(RunOutput& run, const std::optional<std::filesystem::path>& output,
-               const std::optional<std::filesystem::path>& report, const std::optional<std::string>& case_file, double seconds) {
-  run.report.case_file = case_file;
+void write_run(RunOutput& run, const RunFiles& files, double seconds) {
+  run.report.case_file = files.case_file;
   run.report.seconds = seconds;
-  write_result_mesh(run.report, run.moved, run.quality, output);
-  if (report) write_report(*report, run.report, run.extra);
+  write_result_mesh(run.report, run.moved, run.quality, files.output);
+  if (files.report) write_report(*files.report, run.report, run.extra);
 }
 
 std::string mesh_line(const Mesh& mesh) {

@@ -54,17 +54,22 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
 /// The case file `input` names (a .json path), or none for a bare mesh.
 std::optional<CaseFile> case_or_mesh(const std::string& input);
 
-/// The output path of a method command: -o, else the case's "output"; for a bare mesh
-/// (no case) NAME<suffix>.EXT beside it, never over it, where `suffix` is given.
-std::optional<std::filesystem::path> output_path(const std::string& option, const CaseFile* c, const std::string& input,
-                                                 const std::string& suffix = "");
-/// The report path: --report, else the case's "report".
-std::optional<std::filesystem::path> report_path(const std::string& option, const CaseFile* c);
+/// The files a method command writes: its mesh (-o, else the case's "output"; for a bare
+/// mesh, NAME<suffix>.EXT beside it when `suffix` is given) and its report (--report, else the
+/// case's "report"), and the case file (null for a bare mesh) that the report names.
+struct RunFiles {
+  std::optional<std::filesystem::path> output;
+  std::optional<std::filesystem::path> report;
+  std::optional<std::string> case_file;
+};
+
+/// The run's files, checked by check_outputs: call it once every input is read.
+RunFiles run_files(const std::string& output, const std::string& report, const CaseFile* c, const std::string& input,
+                   const std::string& suffix = "");
 
 /// Writes a run's mesh (write_result_mesh) and report (write_report, with `case` and
-/// `seconds` filled) where they are asked for.
-void write_run(RunOutput& run, const std::optional<std::filesystem::path>& output,
-               const std::optional<std::filesystem::path>& report, const std::optional<std::string>& case_file, double seconds);
+/// `seconds` filled) where `files` ask for them.
+void write_run(RunOutput& run, const RunFiles& files, double seconds);
 
 /// "mesh     2D, 1265 nodes, 2304 cells, order 1": the line every method's summary starts with.
 std::string mesh_line(const Mesh& mesh);
