@@ -2,8 +2,10 @@
 #include "methods/detail/untangle_problem.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 #include <Eigen/LU>
@@ -89,23 +91,32 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
     }
   }
 
-  // Unknowns. Slide nodes keep the coordinate normal to their plane: only axis-aligned planes.
+  // Unknowns: every DOF of the free and slide nodes; SlideConstraints holds the slide nodes
+  // on their planes, one level set per distinct plane (normal and offset).
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0), wide(fixed.size(), 0);
+  std::map<std::array<double, d + 1>, std::size_t> plane_of;
+  std::vector<FitTerm> slides;
   for (std::size_t i = 0; i < input.n_nodes(); ++i) {
     const bool orphan = topology.node_cell_offset[i + 1] == topology.node_cell_offset[i];
     const NodeRole role = bc.role[i];
     for (int k = 0; k < d; ++k) {
       const std::size_t dof = static_cast<std::size_t>(d) * i + static_cast<std::size_t>(k);
-      const bool normal_k = role == NodeRole::Slide && std::abs(bc.normal(k, static_cast<Eigen::Index>(i))) > 0.5;
-      fixed[dof] = orphan || role == NodeRole::Fixed || role == NodeRole::Prescribed || normal_k;
-      wide[dof] = orphan || role == NodeRole::Fixed || normal_k;
+      fixed[dof] = orphan || role == NodeRole::Fixed || role == NodeRole::Prescribed;
+      wide[dof] = orphan || role == NodeRole::Fixed;
     }
-    if (role == NodeRole::Slide && (bc.normal.col(static_cast<Eigen::Index>(i)).cwiseAbs().maxCoeff() < 1.0 - 1e-12))
-      throw InputError("untangle: node " + std::to_string(i + 1) +
-                       " slides on a plane that is not normal to a coordinate axis; untangle supports x, y or z = const");
+    if (orphan || role != NodeRole::Slide) continue;
+    const auto col = static_cast<Eigen::Index>(i);
+    const Eigen::VectorXd normal = bc.normal.col(col), point = bc.target.col(col);
+    std::array<double, d + 1> key{};
+    for (int k = 0; k < d; ++k) key[static_cast<std::size_t>(k)] = normal[k];
+    key[d] = normal.dot(point);
+    const auto [at, added] = plane_of.try_emplace(key, slides.size());
+    if (added) slides.push_back({LevelSetFunction(LevelSet{PlaneLevelSet{point, normal}, "slide plane"}, d), {}});
+    slides[at->second].nodes.push_back(static_cast<std::int32_t>(i));
   }
   dofs_ = DofMap::from_mask(d, fixed);
   wide_dofs_ = DofMap::from_mask(d, wide);
+  slides_ = SlideConstraints<d>(slides, dofs_);
   assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
   component_.resize(dofs_.n_free());
   for (std::size_t j = 0; j < dofs_.n_free(); ++j) component_[j] = dofs_.free_dofs()[j] % d;
@@ -130,25 +141,36 @@ void UntangleProblem<d>::scale_off_diagonal(Assembly& out) const {
 }
 
 template <int d>
+void UntangleProblem<d>::set_state(const Eigen::MatrixXd& x) {
+  x_ = x;
+  if (!slides_.empty()) slides_.project(x_, threads_);
+}
+
+template <int d>
 void UntangleProblem<d>::evaluate(HessianMode mode, Assembly& out) {
   AssemblyOptions o;
   o.want = Want::Hessian;
   o.hessian = mode;
   o.threads = threads_;
   assembler_->assemble(metric_, x_, o, out);
-  if (std::isfinite(out.value)) scale_off_diagonal(out);
+  if (!std::isfinite(out.value)) return;
+  // γ first: the frames' P H P + c N Nᵀ keeps a slide node's normal step exactly 0.
+  scale_off_diagonal(out);
+  if (!slides_.empty()) slides_.constrain(x_, mode, out, threads_);
 }
 
 template <int d>
 double UntangleProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
   trial_ = x_;
   dofs_.add_step(p, alpha, trial_);
+  if (!slides_.empty() && !slides_.project(trial_, threads_)) return std::numeric_limits<double>::infinity();
   return assembler_->value(metric_, trial_, {}, threads_);
 }
 
 template <int d>
 void UntangleProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
   dofs_.add_step(p, alpha, x_);
+  if (!slides_.empty()) slides_.project(x_, threads_);
   last_step_ = alpha * p;
 }
 
@@ -244,14 +266,25 @@ bool UntangleProblem<d>::predict(const Eigen::MatrixXd& target, LinearSolver& so
   const Eigen::VectorXd coupling = wide.hessian * motion;
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(dofs_.n_free()));
   for (std::size_t j = 0; j < dofs_.n_free(); ++j) rhs[static_cast<Eigen::Index>(j)] = -coupling[wide_dofs_.reduced(static_cast<std::size_t>(dofs_.free_dofs()[j]))];
-  // K_ii: the exact Hessian, or its SPD projection where the exact one is not positive definite.
+  // K_ii: the exact Hessian, or its SPD projection where the exact one is not positive
+  // definite; at slide nodes in their frames, with the tangential part of the right side, so
+  // that they move along their planes.
   Assembly a;
   o.want = Want::Hessian;
-  assembler_->assemble(metric_, x_, o, a);
+  auto assemble = [&] {
+    assembler_->assemble(metric_, x_, o, a);
+    if (!slides_.empty()) slides_.constrain(x_, o.hessian, a, threads_);
+  };
+  assemble();
   if (!solver.factorize(a.hessian)) {
     o.hessian = HessianMode::Projected;
-    assembler_->assemble(metric_, x_, o, a);
+    assemble();
     if (!solver.factorize(a.hessian)) return false;
+  }
+  for (std::int32_t node : slides_.nodes()) {
+    const std::int32_t first = dofs_.first(static_cast<std::size_t>(node));
+    auto r = rhs.segment<d>(first);
+    r = slides_.frame_of_row(first)->P * r;
   }
   Eigen::VectorXd dx;
   if (!solver.solve(rhs, dx).ok) return false;

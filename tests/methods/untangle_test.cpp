@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/methods/untangle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "meshmorph/error.h"
@@ -265,6 +267,48 @@ TEST(Untangle, AnInputReferenceNeedsAValidInput) {
   const UntangleResult r = untangler.solve(mesh.x, x);
   EXPECT_GT(r.initial_inverted, 0u);
   EXPECT_TRUE(r.converged) << r.message;
+}
+
+// A slide plane at an angle to every axis: the mesh rotated off them, its top pushed down
+// through the first row of cells, the inner nodes of its bottom sliding on the rotated plane
+// (the rest of the boundary fixed). The predictor and every Newton step keep them on it while
+// they move along it, and the mesh comes out valid.
+TEST(Untangle, SlideNodesStayOnAnObliquePlane) {
+  for (const Case c : {Case{ElementType::Triangle, 1, 4}, Case{ElementType::Tetrahedron, 1, 3}}) {
+    Mesh mesh = structured_mesh(c.type, c.order, c.n);
+    const int d = mesh.dim;
+    const Topology topo = build_topology(mesh);
+    BoundaryTargets bc = pushed_top(mesh, topo, 0.9);
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+      const Eigen::VectorXd x = mesh.x.col(static_cast<Eigen::Index>(i));
+      bool inner_bottom = bc.role[i] == NodeRole::Fixed && std::abs(x(d - 1)) < 1e-12;
+      for (int k = 0; k < d - 1; ++k) inner_bottom = inner_bottom && x(k) > 1e-12 && x(k) < 1.0 - 1e-12;
+      if (!inner_bottom) continue;
+      bc.role[i] = NodeRole::Slide;
+      bc.normal(d - 1, static_cast<Eigen::Index>(i)) = -1.0;
+    }
+    const Eigen::MatrixXd R = d == 2 ? Eigen::MatrixXd(Eigen::Rotation2Dd(0.5).toRotationMatrix())
+                                     : Eigen::MatrixXd(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix());
+    mesh.x = R * mesh.x;
+    bc.target = R * bc.target;
+    bc.normal = R * bc.normal;
+    Untangler untangler(mesh, topo, bc, UntangleOptions{});
+    Eigen::MatrixXd x = mesh.x;
+    const UntangleResult r = untangler.solve(bc.target, x);
+    EXPECT_GT(r.initial_inverted, 0u) << "the case must start tangled";
+    ASSERT_TRUE(r.converged) << r.message;
+    Mesh moved = mesh;
+    moved.x = x;
+    EXPECT_EQ(count_invalid_cells(moved), 0u);
+    double slid = 0.0;
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+      if (bc.role[i] != NodeRole::Slide) continue;
+      const auto j = static_cast<Eigen::Index>(i);
+      EXPECT_LE(std::abs(bc.normal.col(j).dot(x.col(j) - bc.target.col(j))), 1e-12) << "node " << i;
+      slid = std::max(slid, (x.col(j) - bc.target.col(j)).norm());
+    }
+    EXPECT_GT(slid, 1e-3) << "the slide nodes move along their plane";
+  }
 }
 
 // Eq. 13 at a tangled state: Δδ = −(F_δ + F_δx·dx)/F_δδ against differences of F in δ and x.

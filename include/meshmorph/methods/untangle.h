@@ -72,15 +72,15 @@ struct UntangleResult {
 /// Simultaneous untangling and smoothing of paper 001: puts the prescribed nodes at their
 /// targets (which may tangle the mesh) and minimises F = Σ_e q_e*ⁿ over the free nodes, with
 /// the regularized volume h(V) while the mesh is tangled and F itself once it is valid.
-/// Fixed and prescribed nodes are not unknowns; a slide node keeps the coordinate normal to
-/// its plane (planes normal to a coordinate axis only).
+/// Fixed and prescribed nodes are not unknowns; a slide node moves along its plane, held on
+/// it by SlideConstraints (energy/slide_constraints.h; any plane).
 ///
 /// One Untangler serves a time series: each solve() starts from the previous result, moved
 /// by the differential predictor (eq. 22–23) when it is on.
 class Untangler {
  public:
   /// `input`, `topology` and `bc` must outlive the Untangler. Throws InputError when the
-  /// reference is Input and an input cell is inverted, or a slide plane is oblique.
+  /// reference is Input and an input cell is inverted.
   Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options);
   ~Untangler();
   Untangler(const Untangler&) = delete;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/energy/assembler.h"
+#include "meshmorph/energy/slide_constraints.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/edge_quality.h"
@@ -21,6 +22,10 @@ namespace meshmorph {
 /// is the Jacobian of the corner triangle (docs/untangle.md: the mean over the corner
 /// simplices in place of eq. 5's product); the points of the validity test (fem/validity.h)
 /// for hexahedra and curved cells. So a finite F at δ = 0 means a valid mesh.
+///
+/// A slide node keeps its d DOFs as unknowns and is held on its plane by SlideConstraints
+/// (energy/slide_constraints.h): its frame constrains the gradient and Hessian of every
+/// evaluation and the predictor, and every trial and accepted point returns to the plane.
 template <int d>
 class UntangleProblem final : public NewtonProblem {
  public:
@@ -37,7 +42,8 @@ class UntangleProblem final : public NewtonProblem {
   std::size_t n_free() const { return dofs_.n_free(); }
   const DofMap& dofs() const { return dofs_; }
   std::size_t n_cells() const { return n_cells_; }
-  void set_state(const Eigen::MatrixXd& x) { x_ = x; }
+  /// Sets the iterate, its slide nodes moved back onto their planes.
+  void set_state(const Eigen::MatrixXd& x);
   const Eigen::MatrixXd& state() const { return x_; }
   double delta() const { return metric_.options().delta; }
   void set_delta(double delta) { metric_ = EdgeQuality<d>({delta, n_}); }
@@ -77,8 +83,9 @@ class UntangleProblem final : public NewtonProblem {
   std::size_t n_cells_ = 0;
   std::vector<std::unique_ptr<ShapeTable>> corner_tables_;  // owned tables of the corner points
   TargetField<d> targets_;
-  DofMap dofs_;                     // unknowns: free nodes, slide nodes' tangential DOFs
+  DofMap dofs_;                     // unknowns: free and slide nodes
   DofMap wide_dofs_;                // ... and the prescribed nodes (the predictor's K_ib)
+  SlideConstraints<d> slides_;      // the slide nodes on their planes, over dofs_
   std::unique_ptr<EnergyAssembler<d>> assembler_, wide_assembler_;
   std::vector<int> component_;      // per reduced DOF: its coordinate k
   std::vector<std::uint8_t> all_fixed_;  // per cell (global order): no free DOF
