@@ -178,8 +178,8 @@ class MorphImpl final : public Morpher::Impl {
   // DESIGN §6: on extreme squeezes the distortion's barrier holds the last cells against the
   // penalty and the augmented Lagrangian stalls short of the boundary, though valid meshes
   // exist there. Paper 001 finds one from the stalled iterate with the prescribed nodes on
-  // their targets (slide nodes on their planes): its regularized volume lets the cells that
-  // this placing inverts come back.
+  // their targets (the slide nodes are on their planes already): its regularized volume lets
+  // the cells that this placing inverts come back.
   void finish_by_untangle(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step, MorphResult& result) {
     MorphResult::Finish& f = result.finish.emplace();
     f.stall = result.message;
@@ -201,12 +201,7 @@ class MorphImpl final : public Morpher::Impl {
         return;
       }
     }
-    Eigen::MatrixXd y = x;
-    for (std::size_t i = 0; i < bc_->n_nodes(); ++i)
-      if (bc_->role[i] == NodeRole::Slide) {
-        const auto j = static_cast<Eigen::Index>(i);
-        y.col(j) -= bc_->normal.col(j) * bc_->normal.col(j).dot(y.col(j) - bc_->target.col(j));
-      }
+    Eigen::MatrixXd y = x;  // its slide nodes are on their planes (MorphProblem)
     log_progress("morph: step " + std::to_string(step) + ": " + result.message + "; untangle pass from there");
     const UntangleResult u = untangler_->solve(target, y, step);
     f.initial_inverted = u.initial_inverted;

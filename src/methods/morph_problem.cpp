@@ -19,23 +19,24 @@ MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const
   targets_ = build_targets<d>(input, input.x, TargetKind::Input);
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0);
   std::vector<std::int32_t> constrained;
+  std::vector<FitTerm> slides;  // a plane per slide node, through its own bc.target
   for (std::size_t i = 0; i < input.n_nodes(); ++i) {
     // Nodes in no cell (e.g. the centre points of Gmsh circle arcs) have no energy: not unknowns.
     const bool orphan = topology.node_cell_offset[i + 1] == topology.node_cell_offset[i];
     if (bc.role[i] == NodeRole::Fixed || orphan) std::fill_n(fixed.begin() + static_cast<std::ptrdiff_t>(d * i), d, std::uint8_t{1});
-    if (!orphan && (bc.role[i] == NodeRole::Prescribed || bc.role[i] == NodeRole::Slide)) constrained.push_back(static_cast<std::int32_t>(i));
+    if (orphan) continue;
+    const auto node = static_cast<std::int32_t>(i);
+    if (bc.role[i] == NodeRole::Prescribed) constrained.push_back(node);
+    if (bc.role[i] == NodeRole::Slide)
+      slides.push_back({LevelSetFunction(LevelSet{PlaneLevelSet{bc.target.col(node), bc.normal.col(node)}, "slide"}, d), {node}});
   }
   dofs_ = DofMap::from_mask(d, fixed);
+  slides_ = SlideConstraints<d>(slides, dofs_);
   assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
   metric_ = make_metric<d>("distortion2");
   mass_ = boundary_mass(input, topology, input.x);
-  Eigen::MatrixXd normals = Eigen::MatrixXd::Zero(d, static_cast<Eigen::Index>(constrained.size()));
-  penalty_slot_.assign(input.n_nodes(), -1);
-  for (std::size_t a = 0; a < constrained.size(); ++a) {
-    penalty_slot_[constrained[a]] = static_cast<std::int32_t>(a);
-    if (bc.role[constrained[a]] == NodeRole::Slide) normals.col(static_cast<Eigen::Index>(a)) = bc.normal.col(constrained[a]);
-  }
-  penalty_ = std::make_unique<BoundaryPenalty<d>>(mass_, std::move(constrained), std::move(normals));
+  const auto n_constrained = static_cast<Eigen::Index>(constrained.size());
+  penalty_ = std::make_unique<BoundaryPenalty<d>>(mass_, std::move(constrained), Eigen::MatrixXd::Zero(d, n_constrained));
 
   weights_.assign(input.n_cells(), 1.0);
   volumes_.reserve(input.n_cells());
@@ -56,16 +57,28 @@ MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const
   for (const CellBlock& block : input.cells)
     if (block.order > 1 || !is_simplex(block.type)) dense_validity_ = true;
   length_scale_ = (input.x.rowwise().maxCoeff() - input.x.rowwise().minCoeff()).norm();
-  x_ = input.x;
+  set_state(input.x);
+}
+
+template <int d>
+void MorphProblem<d>::set_state(const Eigen::MatrixXd& x) {
+  x_ = x;
+  MESHMORPH_CHECK(slides_.project(x_, threads_), "MorphProblem: a slide node cannot be projected onto its plane");
+  ++version_;
+}
+
+template <int d>
+bool MorphProblem<d>::step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const {
+  out = x_;
+  dofs_.add_step(p, alpha, out);
+  return slides_.empty() || slides_.project(out, threads_);
 }
 
 template <int d>
 Eigen::MatrixXd MorphProblem<d>::gather_targets(const Eigen::MatrixXd& target) const {
   const std::vector<std::int32_t>& nodes = penalty_->nodes();
   Eigen::MatrixXd g(d, static_cast<Eigen::Index>(nodes.size()));
-  for (std::size_t a = 0; a < nodes.size(); ++a)
-    g.col(static_cast<Eigen::Index>(a)) =
-        bc_->role[nodes[a]] == NodeRole::Slide ? bc_->target.col(nodes[a]) : target.col(nodes[a]);
+  for (std::size_t a = 0; a < nodes.size(); ++a) g.col(static_cast<Eigen::Index>(a)) = target.col(nodes[a]);
   return g;
 }
 
@@ -78,13 +91,14 @@ void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
   o.threads = threads_;
   assembler_->assemble(*metric_, x_, o, out);
   if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, Want::Hessian, mode, out);
-  if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, Want::Hessian, out);
+  if (!std::isfinite(out.value)) return;
+  penalty_->add_to(*assembler_, x_, Want::Hessian, out);
+  if (!slides_.empty()) slides_.constrain(x_, mode, out, threads_);
 }
 
 template <int d>
 double MorphProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
-  trial_ = x_;
-  dofs_.add_step(p, alpha, trial_);
+  if (!step_to(p, alpha, trial_)) return std::numeric_limits<double>::infinity();
   double v = assembler_->value(*metric_, trial_, weights_, threads_);
   if (std::isfinite(v) && !guard_.empty()) v += guard_.value(*metric_, trial_, weights_);
   return std::isfinite(v) ? v + penalty_->value(trial_) : v;
@@ -93,8 +107,7 @@ double MorphProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
 template <int d>
 bool MorphProblem<d>::admissible(const Eigen::VectorXd& p, double alpha) {
   if (!dense_validity_) return true;  // linear simplices: a finite energy means det A > 0
-  trial_ = x_;
-  dofs_.add_step(p, alpha, trial_);
+  if (!step_to(p, alpha, trial_)) return false;
   bool valid = true;
   std::size_t first = 0;
   for (const CellBlock& block : mesh_->cells) {
@@ -138,6 +151,8 @@ bool MorphProblem<d>::refine() {
 template <int d>
 void MorphProblem<d>::accept(const Eigen::VectorXd& p, double alpha) {
   dofs_.add_step(p, alpha, x_);
+  // trial_value() returned this point: its slide nodes return.
+  if (!slides_.empty()) slides_.project(x_, threads_);
   ++version_;
 }
 

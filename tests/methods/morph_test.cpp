@@ -137,6 +137,58 @@ TEST(Morph, SlidingNodesFollowATranslationAlongTheirPlane) {
   EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-10);
 }
 
+// Slide nodes on oblique planes: the unit square (cube) rotated off the axes, its left side
+// pushed 0.2 towards the right one (the other nodes of both sides and of the edges prescribed
+// to the affine compression), the nodes inside the sides (faces) y = 0, 1 (and z = 0, 1 in 3D)
+// sliding. They end on their planes to rounding, having slid, and the mesh is valid.
+void check_oblique_slide(ElementType type, int order, int n) {
+  const Mesh reference = structured_mesh(type, order, n);
+  const int d = reference.dim;
+  Eigen::MatrixXd R;
+  if (d == 2)
+    R = Eigen::Rotation2Dd(35.0 * M_PI / 180.0).toRotationMatrix();
+  else
+    R = Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Mesh mesh = reference;
+  mesh.x = R * reference.x;
+  const Topology topo = build_topology(mesh);
+  Eigen::MatrixXd compressed = reference.x;
+  compressed.row(0) = (0.2 + 0.8 * reference.x.row(0).array()).matrix();
+  BoundaryTargets bc = all_boundary(mesh, topo, R * compressed);
+  std::vector<std::int32_t> sliding;
+  for (std::int32_t node : boundary_nodes(mesh, topo)) {
+    const Eigen::VectorXd u = reference.x.col(node);
+    const auto on_side = [](double v) { return v < 1e-12 || v > 1 - 1e-12; };
+    int sides = 0, axis = 0;
+    for (int k = 0; k < d; ++k)
+      if (on_side(u[k])) ++sides, axis = k;
+    if (sides != 1 || axis == 0) continue;
+    bc.role[node] = NodeRole::Slide;
+    bc.target.col(node) = mesh.x.col(node);
+    bc.normal.col(node) = R.col(axis);
+    sliding.push_back(node);
+  }
+  for (int k = 1; k < d; ++k) ASSERT_LT(R.col(k).cwiseAbs().maxCoeff(), 0.9);  // the slide normals are oblique
+  ASSERT_FALSE(sliding.empty());
+  Morpher morpher(mesh, topo, bc, MorphOptions{});
+  Eigen::MatrixXd x = mesh.x;
+  const MorphResult r = morpher.solve(bc.target, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  double off = 0.0, slid = 0.0;
+  for (std::int32_t node : sliding) {
+    off = std::max(off, std::abs(bc.normal.col(node).dot(x.col(node) - mesh.x.col(node))));
+    slid = std::max(slid, (x.col(node) - mesh.x.col(node)).norm());
+  }
+  EXPECT_LT(off, 1e-12);
+  EXPECT_GT(slid, 0.05);
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+}
+
+TEST(Morph, SlideNodesStayOnObliquePlanes2D) { check_oblique_slide(ElementType::Triangle, 2, 4); }
+TEST(Morph, SlideNodesStayOnObliquePlanes3D) { check_oblique_slide(ElementType::Tetrahedron, 1, 3); }
+
 // A time series in 4 steps ends where one step does (the minimiser is unique), and the
 // history has a row per augmented-Lagrangian iteration of every step.
 TEST(Morph, StepsReachTheSameSimilarity) {

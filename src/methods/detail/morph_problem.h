@@ -7,6 +7,7 @@
 
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/energy/boundary_penalty.h"
+#include "meshmorph/energy/slide_constraints.h"
 #include "meshmorph/energy/validity_guard.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/solve/newton.h"
@@ -14,8 +15,12 @@
 namespace meshmorph {
 
 /// The augmented-Lagrangian functional of paper 000 (eq. 6–7) as a NewtonProblem: the
-/// weighted distortion Σ_e ω_e ∫ η₀² against the input mesh plus the boundary term, over the
-/// nodes that are not Fixed. Holds the current coordinates.
+/// weighted distortion Σ_e ω_e ∫ η₀² against the input mesh plus the boundary term of the
+/// Prescribed nodes, over the nodes that are not Fixed. Slide nodes stay on their planes
+/// (through bc.target, normal bc.normal) by SlideConstraints (energy/slide_constraints.h):
+/// gradient and Hessian constrained by their frames, so that Newton's decrement measures the
+/// tangential gradient, and every trial and accepted point returned onto the planes. Holds
+/// the current coordinates, slide nodes on their planes.
 template <int d>
 class MorphProblem final : public NewtonProblem {
  public:
@@ -23,13 +28,11 @@ class MorphProblem final : public NewtonProblem {
 
   std::size_t n_free() const { return dofs_.n_free(); }
   const DofMap& dofs() const { return dofs_; }
-  void set_state(const Eigen::MatrixXd& x) {
-    x_ = x;
-    ++version_;
-  }
+  /// Moves the current coordinates to x, its slide nodes onto their planes.
+  void set_state(const Eigen::MatrixXd& x);
   const Eigen::MatrixXd& state() const { return x_; }
   BoundaryPenalty<d>& penalty() { return *penalty_; }
-  /// The penalty's targets from a full d × n target (Prescribed) and bc.target (Slide).
+  /// The penalty's targets from a full d × n target (read at the Prescribed nodes).
   Eigen::MatrixXd gather_targets(const Eigen::MatrixXd& target) const;
 
   /// Σ_e ω_e |e| over the input cells: the energy of the identity map with the current weights.
@@ -66,6 +69,8 @@ class MorphProblem final : public NewtonProblem {
  private:
   const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
   void weights_changed();  // recomputes reference_energy_ and boundary_weight_
+  // out = x_ + α p, slide nodes returned onto their planes; false where one does not return.
+  bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
   const Mesh* mesh_;
   const Topology* topology_;
   const BoundaryTargets* bc_;
@@ -76,10 +81,10 @@ class MorphProblem final : public NewtonProblem {
   std::unique_ptr<Metric<d>> metric_;
   BoundaryMass mass_;
   std::unique_ptr<BoundaryPenalty<d>> penalty_;
+  SlideConstraints<d> slides_;
   ValidityGuard<d> guard_;
   std::vector<std::size_t> blocking_;  // cells (global) that failed admissible() since the last refine()
   bool widen_guard_ = false;
-  std::vector<std::int32_t> penalty_slot_;  // node → index in the penalty, -1
   std::vector<double> weights_, volumes_;
   std::vector<std::uint32_t> boundary_cells_;  // cells with a constrained node
   double reference_energy_ = 0.0, boundary_weight_ = 1.0, length_scale_ = 1.0;
