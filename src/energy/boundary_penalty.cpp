@@ -86,10 +86,8 @@ BoundaryMass boundary_mass(const Mesh& mesh, const Topology& topology, const Eig
 }
 
 template <int d>
-BoundaryPenalty<d>::BoundaryPenalty(const BoundaryMass& mass, std::vector<std::int32_t> nodes, Eigen::MatrixXd normals)
-    : nodes_(std::move(nodes)), normals_(std::move(normals)) {
+BoundaryPenalty<d>::BoundaryPenalty(const BoundaryMass& mass, std::vector<std::int32_t> nodes) : nodes_(std::move(nodes)) {
   const auto m = static_cast<Eigen::Index>(nodes_.size());
-  MESHMORPH_CHECK(normals_.rows() == d && normals_.cols() == m, "BoundaryPenalty: normals must be d × nodes");
   std::vector<Eigen::Index> pos(nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const auto it = std::lower_bound(mass.nodes.begin(), mass.nodes.end(), nodes_[i]);
@@ -114,19 +112,10 @@ BoundaryPenalty<d>::BoundaryPenalty(const BoundaryMass& mass, std::vector<std::i
 }
 
 template <int d>
-Eigen::MatrixXd BoundaryPenalty<d>::project(Eigen::MatrixXd r) const {
-  for (Eigen::Index a = 0; a < r.cols(); ++a) {
-    const auto n = normals_.col(a);
-    if (n.squaredNorm() > 0.0) r.col(a) = n * n.dot(r.col(a));
-  }
-  return r;
-}
-
-template <int d>
 Eigen::MatrixXd BoundaryPenalty<d>::residual(const Eigen::MatrixXd& x) const {
   Eigen::MatrixXd r(d, static_cast<Eigen::Index>(nodes_.size()));
   for (std::size_t a = 0; a < nodes_.size(); ++a) r.col(static_cast<Eigen::Index>(a)) = x.col(nodes_[a]) - g_.col(static_cast<Eigen::Index>(a));
-  return project(std::move(r));
+  return r;
 }
 
 template <int d>
@@ -185,7 +174,7 @@ void BoundaryPenalty<d>::add_to(const EnergyAssembler<d>& assembler, const Eigen
   out.value += -(lambda_.cwiseProduct(rM)).sum() + 0.5 * mu * (r.cwiseProduct(rM)).sum();
   if (want == Want::Value) return;
   const DofMap& dofs = assembler.dofs();
-  const Eigen::MatrixXd grad = project(mu * rM - lambda_ * M_);  // ∂E_b/∂x_a = P_a Σ_b M_ab (μ r_b − λ_b)
+  const Eigen::MatrixXd grad = mu * rM - lambda_ * M_;  // ∂E_b/∂x_a = Σ_b M_ab (μ r_b − λ_b)
   for (std::size_t a = 0; a < nodes_.size(); ++a)
     for (int k = 0; k < d; ++k) {
       const std::int32_t i = dofs.reduced(static_cast<std::size_t>(d) * nodes_[a] + k);
@@ -197,15 +186,11 @@ void BoundaryPenalty<d>::add_to(const EnergyAssembler<d>& assembler, const Eigen
   std::size_t e = 0;
   for (Eigen::Index col = 0; col < M_.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(M_, col); it; ++it) {
-      // P_a P_b with P = I or n nᵀ.
-      Eigen::Matrix<double, d, d> Pa = Eigen::Matrix<double, d, d>::Identity(), Pb = Pa;
-      const auto na = normals_.col(it.row()), nb = normals_.col(col);
-      if (na.squaredNorm() > 0.0) Pa = na * na.transpose();
-      if (nb.squaredNorm() > 0.0) Pb = nb * nb.transpose();
-      const Eigen::Matrix<double, d, d> block = mu * it.value() * (Pa * Pb);
+      // μ M_ab I: only the diagonal of each d × d block.
+      const double v = mu * it.value();
       for (int l = 0; l < d; ++l)
         for (int k = 0; k < d; ++k, ++e)
-          if (hessian_offsets_[e] >= 0) values[hessian_offsets_[e]] += block(k, l);
+          if (k == l && hessian_offsets_[e] >= 0) values[hessian_offsets_[e]] += v;
     }
 }
 

@@ -35,8 +35,7 @@ MorphProblem<d>::MorphProblem(const Mesh& input, const Topology& topology, const
   assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
   metric_ = make_metric<d>("distortion2");
   mass_ = boundary_mass(input, topology, input.x);
-  const auto n_constrained = static_cast<Eigen::Index>(constrained.size());
-  penalty_ = std::make_unique<BoundaryPenalty<d>>(mass_, std::move(constrained), Eigen::MatrixXd::Zero(d, n_constrained));
+  penalty_ = std::make_unique<BoundaryPenalty<d>>(mass_, std::move(constrained));
 
   weights_.assign(input.n_cells(), 1.0);
   volumes_.reserve(input.n_cells());

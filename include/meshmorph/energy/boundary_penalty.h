@@ -24,17 +24,16 @@ struct BoundaryMass {
 BoundaryMass boundary_mass(const Mesh& mesh, const Topology& topology, const Eigen::MatrixXd& x);
 
 /// The boundary term of the augmented Lagrangian (paper 000 eq. 5–6, 8):
-///   E_b(x) = −Σ_ab M_ab λ_a·r_b + ½ μ Σ_ab M_ab r_a·r_b,  r_a = P_a (x_a − g_a),
-/// over the constrained nodes a: P_a = I for a prescribed node, P_a = n_a n_aᵀ for a node that
-/// slides on the plane with unit normal n_a through g_a. Nodal multipliers λ_a (d-vectors,
+///   E_b(x) = −Σ_ab M_ab λ_a·r_b + ½ μ Σ_ab M_ab r_a·r_b,  r_a = x_a − g_a,
+/// over the prescribed nodes a (slide nodes are held by energy/slide_constraints.h, not
+/// here). Nodal multipliers λ_a (d-vectors,
 /// the nodal values of the P^p multiplier field). Nodes outside the constrained set are
 /// either free or hard-fixed at their target, where r = 0, so their rows of M drop out.
 template <int d>
 class BoundaryPenalty {
  public:
-  /// `nodes`: constrained nodes (sorted, all in mass.nodes); `normals`: d × nodes.size(),
-  /// a zero column for a prescribed node, the unit slide normal otherwise.
-  BoundaryPenalty(const BoundaryMass& mass, std::vector<std::int32_t> nodes, Eigen::MatrixXd normals);
+  /// `nodes`: the prescribed nodes (sorted, all in mass.nodes).
+  BoundaryPenalty(const BoundaryMass& mass, std::vector<std::int32_t> nodes);
 
   std::size_t size() const { return nodes_.size(); }
   const std::vector<std::int32_t>& nodes() const { return nodes_; }
@@ -65,9 +64,7 @@ class BoundaryPenalty {
   double mean_diagonal() const;
 
  private:
-  Eigen::MatrixXd project(Eigen::MatrixXd r) const;  // applies P_a column by column
   std::vector<std::int32_t> nodes_;
-  Eigen::MatrixXd normals_;
   Eigen::SparseMatrix<double> M_;  // restricted to nodes_
   double total_ = 0.0;             // 1ᵀ M 1
   Eigen::MatrixXd g_, lambda_;
