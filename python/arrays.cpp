@@ -182,6 +182,7 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
   for (std::size_t i = 0; i < m.n_nodes(); ++i) m.node_tags[i] = static_cast<std::int64_t>(i) + 1;
   m.cells = blocks_of(cells, m.n_nodes(), m.dim, m.dim, "Mesh: cells");
   if (m.cells.empty()) throw InputError("Mesh: cells: no cell block");
+  if (m.n_cells() == 0) throw InputError("Mesh: cells: no cell (every block is empty)");
   m.facets = blocks_of(facets, m.n_nodes(), 0, m.dim - 1, "Mesh: facets");
   for (std::size_t i = 0; i < groups.size(); ++i) {
     const std::string where = "Mesh: groups[" + std::to_string(i) + "]";

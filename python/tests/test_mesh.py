@@ -172,6 +172,7 @@ class MeshFromArraysTest(unittest.TestCase):
             ([{"type": "triangle", "nodes": [[0, 1, 2]]}], [{"type": "triangle", "nodes": [[0, 1, 2]]}],
              r'facets\[0\]\.type: "triangle" is not a facet type'),
             ([], [], "Mesh: cells: no cell block"),
+            ([{"type": "triangle", "nodes": np.zeros((0, 3), dtype=np.int64)}], [], r"Mesh: cells: no cell \(every block is empty\)"),
         ]
         for cells, facets, message in cases:
             with self.subTest(message=message):

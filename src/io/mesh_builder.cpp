@@ -79,7 +79,9 @@ void drop_repeated_cells(CellBlock& b) {
 Mesh MeshBuilder::finish(const std::string& where) {
   Mesh mesh;
   int top = 0;
-  for (const CellBlock& b : blocks_) top = std::max(top, topological_dim(b.type));
+  // A block declared with no element holds no cell: a mesh of only such blocks has none.
+  for (const CellBlock& b : blocks_)
+    if (!b.nodes.empty()) top = std::max(top, topological_dim(b.type));
   if (top < 2) throw InputError(where + ": no triangle, quadrilateral, tetrahedron or hexahedron cells");
   mesh.dim = top;
   if (mesh.dim == 2 && !first_nonzero_z.empty())
