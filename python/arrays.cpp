@@ -8,6 +8,7 @@
 
 #include "io/detail/mesh_builder.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace {
@@ -197,6 +198,7 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
     if (tag < 1 || tag > std::numeric_limits<std::int32_t>::max()) throw InputError(where + ".tag: " + std::to_string(tag) + " is not in [1, 2^31)");
     if (name.find_first_of("\"\n\r") != std::string::npos)
       throw InputError(where + ".name: a group name holds no quote or line break (MSH could not store it)");
+    if (const auto bad = group_name_problem(name)) throw InputError(where + ".name: the name " + *bad);
     for (const PhysicalGroup& other : m.groups)
       if ((other.dim == dim && other.tag == tag) || (!name.empty() && other.name == name))
         throw InputError(where + ": group " + (name.empty() ? std::to_string(tag) : "\"" + name + "\"") + " is given twice");

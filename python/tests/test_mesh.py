@@ -150,6 +150,7 @@ class MeshFromArraysTest(unittest.TestCase):
             ([tri], [{"dim": 7, "tag": 1}], r"groups\[0\]\.dim: 7 is not in \[0, 2\]"),
             ([tri], [{"dim": 1, "tag": 1, "colour": "red"}], r"groups\[0\]\.colour: unknown key"),
             ([tri], [{"dim": 1, "tag": 1, "name": 'a "b"'}], r"groups\[0\]\.name: a group name holds no quote"),
+            ([tri], [{"dim": 1, "tag": 1, "name": "a\x01b"}], r"groups\[0\]\.name: the name holds the control byte 0x01 at byte 1"),
             ([tri], [{"dim": 1, "tag": 1, "name": "a"}, {"dim": 1, "tag": 2, "name": "a"}], r'groups\[1\]: group "a" is given twice'),
         ]
         for cells, groups, message in cases:

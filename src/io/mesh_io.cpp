@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/io/mesh_io.h"
 
+#include <cstdint>
+#include <cstdio>
+
 #include <algorithm>
 #include <cctype>
 #include <string>
@@ -30,7 +33,41 @@ Mesh read_mesh(const std::filesystem::path& path) {
   throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu or .mesh)");
 }
 
+std::optional<std::string> group_name_problem(std::string_view name) {
+  char hex[8];
+  for (std::size_t i = 0; i < name.size();) {
+    const auto b = static_cast<unsigned char>(name[i]);
+    if (b < 0x20 || b == 0x7f) {
+      std::snprintf(hex, sizeof hex, "0x%02x", b);
+      return "holds the control byte " + std::string(hex) + " at byte " + std::to_string(i);
+    }
+    if (b == '"') return "holds a double quote at byte " + std::to_string(i) + " (MSH keeps names in quotes)";
+    // UTF-8: a lead byte and its continuation bytes 10xxxxxx; no overlong forms, surrogates
+    // or code points above U+10FFFF.
+    const int len = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xe ? 3 : (b >> 3) == 0x1e ? 4 : 0;
+    bool ok = len > 0 && i + static_cast<std::size_t>(len) <= name.size();
+    std::uint32_t cp = len == 1 ? b : len == 2 ? (b & 0x1fu) : len == 3 ? (b & 0x0fu) : (b & 0x07u);
+    for (int k = 1; ok && k < len; ++k) {
+      const auto c = static_cast<unsigned char>(name[i + static_cast<std::size_t>(k)]);
+      ok = (c >> 6) == 0x2;
+      cp = (cp << 6) | (c & 0x3fu);
+    }
+    static constexpr std::uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (ok) ok = cp >= least[len] && cp <= 0x10ffff && (cp < 0xd800 || cp > 0xdfff);
+    if (!ok) {
+      std::snprintf(hex, sizeof hex, "0x%02x", b);
+      return "is not valid UTF-8 (byte " + std::string(hex) + " at byte " + std::to_string(i) + ")";
+    }
+    i += static_cast<std::size_t>(len);
+  }
+  return std::nullopt;
+}
+
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {
+  for (const PhysicalGroup& g : mesh.groups)
+    if (const auto bad = group_name_problem(g.name))
+      throw InputError(path.string() + ": the name of physical group " + std::to_string(g.tag) + " (dimension " +
+                       std::to_string(g.dim) + ") " + *bad + ", which no mesh format can hold");
   MeshFormat format{};
   if (options.format) {
     format = *options.format;

@@ -6,6 +6,7 @@
 
 #include "io/detail/msh_reader.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace detail {
@@ -59,7 +60,9 @@ void read_physical_names(MshState& s) {
     std::size_t close = open + 1;
     while (close < t.size() && t[close] != '"' && t[close] != '\n') ++close;
     if (close >= t.size() || t[close] != '"') c.fail_at(open, "missing closing quote in physical name");
-    s.builder.named_groups.push_back(PhysicalGroup{dim, tag, std::string(t.substr(open + 1, close - open - 1))});
+    const std::string_view name = t.substr(open + 1, close - open - 1);
+    if (const auto bad = group_name_problem(name)) c.fail_at(open, "physical name " + *bad);
+    s.builder.named_groups.push_back(PhysicalGroup{dim, tag, std::string(name)});
     c.seek(close + 1);
   }
 }

@@ -16,6 +16,7 @@
 #include "io/detail/mesh_builder.h"
 #include "io/detail/vtu_arrays.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/io/vtk_ordering.h"
 
 namespace meshmorph {
@@ -261,8 +262,10 @@ Mesh read_vtu(const std::filesystem::path& path) {
     const std::string_view type = a.attribute("type").as_string();
     if (!type.starts_with("Int") && !type.starts_with("UInt")) continue;  // TimeValue, strings, ...
     const auto v = read_array<std::int64_t>(f, a, detail::ValueCount{});  // any length
-    if (v.size() == 2 && v[1] >= 0 && v[1] <= 3)
-      builder.named_groups.push_back(PhysicalGroup{static_cast<int>(v[1]), static_cast<std::int32_t>(v[0]), a.attribute("Name").as_string()});
+    if (v.size() != 2 || v[1] < 0 || v[1] > 3) continue;
+    const std::string name = a.attribute("Name").as_string();
+    if (const auto bad = group_name_problem(name)) f.fail(a, "group name " + *bad);
+    builder.named_groups.push_back(PhysicalGroup{static_cast<int>(v[1]), static_cast<std::int32_t>(v[0]), name});
   }
   if (!grid.child("Piece")) f.fail(grid, "no Piece element");
   bool first_piece = true;

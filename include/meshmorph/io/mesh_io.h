@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <filesystem>
+#include <string_view>
 #include <map>
 #include <optional>
 #include <string>
@@ -28,8 +29,15 @@ struct WriteOptions {
 /// malformed content, and IoError when the file cannot be read.
 Mesh read_mesh(const std::filesystem::path& path);
 
+/// Why a physical-group name cannot be stored in every format, or none: MSH keeps names in
+/// quotes on one line and XML holds no control byte, so a name must be valid UTF-8 without
+/// control bytes (below 0x20, 0x7f) or double quotes. Readers refuse such names at their
+/// line, writers before writing anything.
+std::optional<std::string> group_name_problem(std::string_view name);
+
 /// Writes a mesh atomically (io/atomic_file.h). Throws InputError when the format cannot
-/// hold the mesh (e.g. curved cells in Medit), IoError when the file cannot be written.
+/// hold the mesh (e.g. curved cells in Medit, a group name of group_name_problem), IoError
+/// when the file cannot be written.
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options = {});
 
 }  // namespace meshmorph
