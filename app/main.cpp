@@ -16,6 +16,7 @@
 
 #include "meshmorph/cli/commands.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/atomic_file.h"
 #include "meshmorph/io/input_files.h"
 
 namespace {
@@ -105,6 +106,7 @@ int main(int argc, char** argv) {
 
   try {
     meshmorph::apply_common_options(common);
+    meshmorph::remove_temporaries_on_signals();
     meshmorph::record_input_files(true);  // no output the run names itself replaces a file it read
     const meshmorph::Outcome outcome = run(std::cout);
     std::cout.flush();

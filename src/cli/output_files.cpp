@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "cli/detail/output_files.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <system_error>
 
 #include <omp.h>
@@ -28,6 +32,14 @@ void check_outputs(const std::vector<OutputFile>& outputs) {
     const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
     if (!std::filesystem::is_directory(folder, ec))
       throw InputError(o.label + ": " + o.path.string() + ": no folder " + folder.string());
+    // A run that cannot write its result should not run first: create and remove a file there.
+    std::string probe = (folder / ".meshmorph-probe-XXXXXX").string();
+    const int fd = ::mkstemp(probe.data());
+    if (fd < 0)
+      throw IoError(o.label + ": " + o.path.string() + ": cannot write in " + folder.string() + ": " +
+                    std::generic_category().message(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
     if (const auto input = o.may_replace_input ? std::nullopt : input_file_at(o.path))
       throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
                        "), which only an output mesh you name yourself may replace");

@@ -34,6 +34,7 @@ quality $mesh --threads 0|--threads: Value 0 not in range 1 to 1024
 quality $mesh --threads 65536|--threads: Value 65536 not in range 1 to 1024
 quality $mesh --json $work/out/q.json -o $work/nodir/q.vtu|nodir/q.vtu: no folder
 quality $mesh --quiet --verbose|
+morph $examples/01_rotate_annulus/case.json -o /proc/sys/out.vtu --report $work/out/r.json|output: /proc/sys/out.vtu: cannot write in /proc/sys
 CASES
 echo "$failures failures"
 [ "$failures" -eq 0 ]

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -71,6 +72,28 @@ TEST_F(AtomicFile, AnExceptionLeavesTheOldFileAndNoTemporary) {
                std::runtime_error);
   EXPECT_FALSE(fs::exists(dir_ / "new.txt"));
   EXPECT_EQ(n_entries(dir_), 1u);
+}
+
+// A run killed while it wrote (kill -9 runs no handler) leaves `.NAME.tmp-XXXXXX`: the next
+// write to the same path removes those older than its run, and nothing else.
+TEST_F(AtomicFile, TheNextWriteRemovesTheTemporariesOfAKilledRun) {
+  const auto older = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  const auto later = fs::file_time_type::clock::now() + std::chrono::hours(1);
+  const auto make = [&](const std::string& name, fs::file_time_type when) {
+    std::ofstream(dir_ / name) << "partial";
+    fs::last_write_time(dir_ / name, when);
+  };
+  make(".out.vtu.tmp-AbC123", older);   // a killed run's
+  make(".out.vtu.tmp-XyZ789", later);   // written during this run: another writer's
+  make(".other.vtu.tmp-AbC123", older); // another path's
+  make(".out.vtu.tmp-AbC1234", older);  // not a temporary's name
+  write_atomically(dir_ / "out.vtu", false, [](std::ostream& o) { o << "done"; });
+  EXPECT_EQ(slurp(dir_ / "out.vtu"), "done");
+  EXPECT_FALSE(fs::exists(dir_ / ".out.vtu.tmp-AbC123"));
+  EXPECT_TRUE(fs::exists(dir_ / ".out.vtu.tmp-XyZ789"));
+  EXPECT_TRUE(fs::exists(dir_ / ".other.vtu.tmp-AbC123"));
+  EXPECT_TRUE(fs::exists(dir_ / ".out.vtu.tmp-AbC1234"));
+  EXPECT_EQ(n_entries(dir_), 4u);
 }
 
 TEST_F(AtomicFile, AMissingFolderIsAnIoError) {
