@@ -41,13 +41,21 @@ DeformOptions read_deform_options(const CaseFile& c, int threads) {
   return o;
 }
 
-DeformRunner::DeformRunner(const CaseFile& c, Mesh mesh, int threads)
-    : where_(c.file.string()), input_(std::move(mesh)), exact_(input_.n_nodes()) {
+namespace {
+
+// The case's keys checked against `mesh`, then the mesh raised to the case's order.
+Mesh elevated(const CaseFile& c, Mesh mesh) {
   reject_unused_keys(c, "deform", {"interface", "trim"});
-  check_case_against_mesh(c, input_);
+  check_case_against_mesh(c, mesh);
+  if (c.order && below_order(mesh, *c.order)) return elevate_order(mesh, *c.order);
+  return mesh;
+}
+
+}  // namespace
+
+DeformRunner::DeformRunner(const CaseFile& c, Mesh mesh, int threads)
+    : where_(c.file.string()), input_(elevated(c, std::move(mesh))), exact_(input_.n_nodes()) {
   options_ = read_deform_options(c, threads);
-  if (c.order && below_order(input_, *c.order)) input_ = elevate_order(input_, *c.order);
-  exact_ = ExactDesignTargets(input_.n_nodes());
   if (const std::size_t bad = count_invalid_cells(input_); bad > 0)
     throw InputError(where_ + ": " + std::to_string(bad) + " cells of the input mesh are inverted; "
                      "deform starts from a valid mesh (meshmorph untangle repairs it)");

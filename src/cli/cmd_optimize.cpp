@@ -5,7 +5,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <omp.h>
@@ -27,12 +26,10 @@ struct OptimizeArgs : detail::MethodArgs {
 Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
-  Mesh mesh = read_mesh(c ? c->mesh : std::filesystem::path(a.input));
-  // The whole run, its summary included, on the threads optimize picks for this size.
-  threads = optimize_threads(threads, static_cast<std::size_t>(mesh.dim) * mesh.n_nodes());
-  if (threads > 0) omp_set_num_threads(threads);
-  const OptimizeRunner runner(c ? *c : bare_case(a.input), std::move(mesh), threads,
+  const OptimizeRunner runner(c ? *c : bare_case(a.input), read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
                               OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
+  // The rest of the run, its summary included, on the threads the runner picked for this size.
+  if (runner.threads() > 0) omp_set_num_threads(runner.threads());
   // Every input is read by now.
   const detail::RunFiles files = detail::run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_optimized");
 

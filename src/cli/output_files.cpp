@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <system_error>
 
 #include <omp.h>
@@ -23,6 +24,7 @@ std::filesystem::path step_path(const std::filesystem::path& out, int step) {
 }
 
 void check_outputs(const std::vector<OutputFile>& outputs) {
+  std::set<std::filesystem::path> probed;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const OutputFile& o = outputs[i];
     // Where a later output cannot be written, an earlier one must not be either.
@@ -32,14 +34,17 @@ void check_outputs(const std::vector<OutputFile>& outputs) {
     const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
     if (!std::filesystem::is_directory(folder, ec))
       throw InputError(o.label + ": " + o.path.string() + ": no folder " + folder.string());
-    // A run that cannot write its result should not run first: create and remove a file there.
-    std::string probe = (folder / ".meshmorph-probe-XXXXXX").string();
-    const int fd = ::mkstemp(probe.data());
-    if (fd < 0)
-      throw IoError(o.label + ": " + o.path.string() + ": cannot write in " + folder.string() + ": " +
-                    std::generic_category().message(errno));
-    ::close(fd);
-    ::unlink(probe.c_str());
+    // A run that cannot write its result should not run first: create and remove a file in
+    // each folder once (the step files of a series share one).
+    if (probed.insert(std::filesystem::absolute(folder).lexically_normal()).second) {
+      std::string probe = (folder / ".meshmorph-probe-XXXXXX").string();
+      const int fd = ::mkstemp(probe.data());
+      if (fd < 0)
+        throw IoError(o.label + ": " + o.path.string() + ": cannot write in " + folder.string() + ": " +
+                      std::generic_category().message(errno));
+      ::close(fd);
+      ::unlink(probe.c_str());
+    }
     if (const auto input = o.may_replace_input ? std::nullopt : input_file_at(o.path))
       throw InputError(o.label + ": " + o.path.string() + " is a file this run reads (" + input->string() +
                        "), which only an output mesh you name yourself may replace");
