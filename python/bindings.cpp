@@ -48,7 +48,10 @@ py::dict quality_dict(const QualityReport& q) {
   py::dict d;
   d["cells"] = q.n_cells;
   d["inverted_elements"] = q.inverted_elements;
-  d["valid"] = q.inverted_elements == 0;
+  d["flipped_elements"] = q.flipped_cells.size();
+  d["cell_volume"] = q.cell_volume;
+  d["enclosed_volume"] = q.enclosed_volume;
+  d["valid"] = q.valid();
   if (q.has_input) {
     d["min_quality"] = q.min_quality;
     d["mean_quality"] = q.mean_quality;

@@ -45,8 +45,8 @@ def _case_text(name, case):
 class _Method:
     """What Morpher and Untangler share: a case on a mesh in memory, solved again and again."""
 
-    def __init__(self, session, name, mesh, boundary, options, order, threads):
-        case = {}
+    def __init__(self, session, name, mesh, boundary, options, order, threads, reorient=False):
+        case = {"reorient": True} if reorient else {}
         if boundary is not None:
             case["boundary"] = boundary
         if options is not None:
@@ -101,8 +101,8 @@ class Morpher(_Method):
     solve that misses its goal still leaves a valid mesh (the last valid iterate).
     """
 
-    def __init__(self, mesh, boundary, options=None, order=None, threads=0):
-        super().__init__(_MorphSession, "Morpher", mesh, boundary, options, order, threads)
+    def __init__(self, mesh, boundary, options=None, order=None, threads=0, reorient=False):
+        super().__init__(_MorphSession, "Morpher", mesh, boundary, options, order, threads, reorient)
 
 
 class Untangler(_Method):
@@ -116,11 +116,11 @@ class Untangler(_Method):
     When "converged" is False the points may still be tangled: the report says how many cells.
     """
 
-    def __init__(self, mesh, boundary=None, options=None, order=None, threads=0):
-        super().__init__(_UntangleSession, "Untangler", mesh, boundary, options, order, threads)
+    def __init__(self, mesh, boundary=None, options=None, order=None, threads=0, reorient=False):
+        super().__init__(_UntangleSession, "Untangler", mesh, boundary, options, order, threads, reorient)
 
 
-def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None, threads=0):
+def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None, threads=0, reorient=False):
     """Fits `mesh` to level sets (paper 003, `meshmorph fit`): its material interface to
     `interface`, its boundary to `trim` after the cells outside are removed, or boundary groups
     to `project` entries of `boundary`. Level sets as in a case file (docs/level-sets.md):
@@ -132,50 +132,52 @@ def fit(mesh, interface=None, trim=None, boundary=None, options=None, order=None
     fitted mesh, which trimming and splits may have changed cell by cell. When
     report["converged"] is False, report["message"] says why.
     """
-    return _run(_fit, "fit", mesh, threads, interface=interface, trim=trim, boundary=boundary, options=options, order=order)
+    return _run(_fit, "fit", mesh, threads, interface=interface, trim=trim, boundary=boundary, options=options, order=order, reorient=reorient or None)
 
 
 def _run(method, name, mesh, threads, **keys):
-    """A whole case of the command line's runner on `mesh`: (report dict, moved mesh)."""
+    """A whole case of the command line's runner on `mesh`: (report dict, moved mesh).
+    Every method takes reorient=True as the case's "reorient" (cells listed mirrored against
+    their neighbours are listed back instead of refused: docs/cli.md, --reorient)."""
     case = {key: value for key, value in keys.items() if value is not None}
     text, moved = method(mesh, _case_text(name, case), threads)
     return _json.loads(text), moved
 
 
-def morph(mesh, boundary, options=None, order=None, steps=None, threads=0):
+def morph(mesh, boundary, options=None, order=None, steps=None, threads=0, reorient=False):
     """Morphs `mesh` as `meshmorph morph` runs a case (paper 000, or the baselines with
     options["method"] "laplace" or "elastic"): `boundary`, `options`, `order` and `steps` are
     the case file's keys (docs/case-file.md, docs/morph.md). Returns (report, mesh): the report
     of DESIGN §3.3 as a dict and the morphed mesh. When report["converged"] is False,
     report["message"] says why. Morpher solves again and again with its state kept.
     """
-    return _run(_morph, "morph", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+    return _run(_morph, "morph", mesh, threads, boundary=boundary, options=options, order=order, steps=steps, reorient=reorient or None)
 
 
-def untangle(mesh, boundary=None, options=None, order=None, steps=None, threads=0):
+def untangle(mesh, boundary=None, options=None, order=None, steps=None, threads=0, reorient=False):
     """Untangles and smooths `mesh` as `meshmorph untangle` runs a case (paper 001); without
     `boundary` every boundary node stays where it is (`meshmorph untangle MESH`). Returns
     (report, mesh); the report holds "steps" as the command line's does.
     """
-    return _run(_untangle, "untangle", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+    return _run(_untangle, "untangle", mesh, threads, boundary=boundary, options=options, order=order, steps=steps, reorient=reorient or None)
 
 
-def deform(mesh, boundary, options=None, order=None, steps=None, threads=0):
+def deform(mesh, boundary, options=None, order=None, steps=None, threads=0, reorient=False):
     """Deforms `mesh` as `meshmorph deform` runs a case (paper 004): CVT repair of the moved
     design surface, then Eikonal convection into the volume. `boundary` must move a design
     group; `options` are those of docs/deform.md. Returns (report, mesh).
     """
-    return _run(_deform, "deform", mesh, threads, boundary=boundary, options=options, order=order, steps=steps)
+    return _run(_deform, "deform", mesh, threads, boundary=boundary, options=options, order=order, steps=steps, reorient=reorient or None)
 
 
-def optimize(mesh, boundary=None, options=None, order=None, threads=0):
+def optimize(mesh, boundary=None, options=None, order=None, threads=0, reorient=False):
     """Optimizes `mesh` by TMOP as `meshmorph optimize` does (docs/optimize.md): `options`
     choose the metric, target and boundary treatment ("boundary": "fixed", "slide",
     "slide-planes"); `boundary` entries fix a group, let it slide or project it onto a level
     set. A tangled mesh is untangled first. threads=0 picks as the command line does (one
     thread below 30 000 unknowns). Returns (report, mesh).
     """
-    return _run(_optimize, "optimize", mesh, threads, boundary=boundary, options=options, order=order)
+    return _run(_optimize, "optimize", mesh, threads, boundary=boundary, options=options, order=order, reorient=reorient or None)
 
 
 def convert(input, output, order=None, binary=False, msh22=False):

@@ -13,6 +13,7 @@ import meshmorph
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ANNULUS = ROOT / "examples" / "meshes" / "annulus.msh"
 SPHERE_P2 = ROOT / "examples" / "meshes" / "sphere_in_box_p2.msh"
+FOLDED = ROOT / "tests" / "data" / "folded"
 
 
 class MeshTest(unittest.TestCase):
@@ -248,6 +249,28 @@ class MeshErrorTest(unittest.TestCase):
         with self.assertRaisesRegex(meshmorph.InputError, "expected \"quiet\""):
             meshmorph.set_log_level("loud")
         meshmorph.set_log_level("quiet")
+
+class InjectivityTest(unittest.TestCase):
+    """A cell listed clockwise among counter-clockwise ones folds the mesh (docs/metrics.md)."""
+
+    def test_quality_calls_a_folded_mesh_invalid(self):
+        q = meshmorph.quality(meshmorph.read_mesh(str(FOLDED / "folded_square_untangled.mesh")))
+        self.assertEqual((q["valid"], q["inverted_elements"], q["flipped_elements"]), (False, 0, 1))
+        self.assertAlmostEqual(q["cell_volume"], 1.0657558622307, places=12)
+        self.assertAlmostEqual(q["enclosed_volume"], 1.0, places=12)
+
+    def test_methods_refuse_a_flipped_cell_or_reorient_it(self):
+        mesh = meshmorph.read_mesh(str(FOLDED / "folded_square.mesh"))
+        with self.assertRaisesRegex(meshmorph.InputError, "1 cell is listed mirrored against its neighbours, first cell 3"):
+            meshmorph.untangle(mesh)
+        with self.assertRaisesRegex(meshmorph.InputError, "listed mirrored"):
+            meshmorph.Untangler(mesh)
+        report, untangled = meshmorph.untangle(mesh, reorient=True)
+        self.assertTrue(report["valid"])
+        self.assertEqual(report["flipped_elements"], 0)
+        q = meshmorph.quality(untangled)
+        self.assertTrue(q["valid"])
+        self.assertAlmostEqual(q["cell_volume"], 1.0, places=12)
 
 
 if __name__ == "__main__":

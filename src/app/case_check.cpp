@@ -8,6 +8,8 @@
 #include "app/detail/json_reader.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
+#include "meshmorph/fem/orientation.h"
+#include "meshmorph/mesh/topology.h"
 
 namespace meshmorph {
 
@@ -148,6 +150,28 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
   if (c.output && c.output->extension() == ".mesh" && order > 1)
     JsonWhere{c.file.string(), "output"}.fail("Medit .mesh holds linear cells only; the result is of order " +
                                               std::to_string(order) + " (write .msh or .vtu)");
+}
+
+std::size_t orient_cells(const CaseFile& c, Mesh& mesh) {
+  if (mesh.n_cells() == 0) return 0;
+  const Topology topology = build_topology(mesh, TopologyParts::Facets);
+  const CellOrientation o = cell_orientation(mesh, topology, signed_volumes(mesh));
+  const std::string where = c.mesh.empty() ? c.file.string() + ": the mesh" : c.mesh.string();
+  if (o.twisted_facet >= 0)
+    throw InputError(where + ": no orientation fits the cells around facet " + std::to_string(o.twisted_facet) +
+                     " (a non-orientable mesh cannot be placed without overlapping itself)");
+  if (o.flipped.empty()) return 0;
+  if (!c.reorient) {
+    const std::size_t n = o.flipped.size();
+    const std::size_t b = topology.locate(o.flipped.front()).first;
+    throw InputError(where + ": " + std::to_string(n) + (n > 1 ? " cells are" : " cell is") +
+                     " listed mirrored against " + (n > 1 ? "their" : "its") + " neighbours, first cell " +
+                     std::to_string(o.flipped.front()) + " (a " + std::string(name_of(mesh.cells[b].type)) +
+                     "; cells counted from 0 as `quality -o` writes them): the mesh folds over itself there; fix its "
+                     "node order or pass --reorient (case key \"reorient\")");
+  }
+  mirror_cells(mesh, topology, o.flipped);
+  return o.flipped.size();
 }
 
 }  // namespace meshmorph

@@ -43,11 +43,13 @@ DeformOptions read_deform_options(const CaseFile& c, int threads) {
 
 namespace {
 
-// The case's keys checked against `mesh`, then the mesh raised to the case's order.
+// The case's keys checked against `mesh`, then the mesh raised to the case's order, its cells
+// oriented alike.
 Mesh elevated(const CaseFile& c, Mesh mesh) {
   reject_unused_keys(c, "deform", {"interface", "trim"});
   check_case_against_mesh(c, mesh);
-  if (c.order && below_order(mesh, *c.order)) return elevate_order(mesh, *c.order);
+  if (c.order && below_order(mesh, *c.order)) mesh = elevate_order(mesh, *c.order);
+  orient_cells(c, mesh);
   return mesh;
 }
 

@@ -241,6 +241,7 @@ FitRunner::FitRunner(const CaseFile& c, Mesh mesh, int threads) {
   reject_unused_keys(c, "fit", {"steps", "output_each_step"});
   check_case_against_mesh(c, mesh);
   settings_ = read_fit_settings(c, threads);
+  orient_cells(c, mesh);
   if (const std::size_t bad = count_invalid_cells(mesh); bad > 0)
     throw InputError(detail::inverted_input(c, bad) + ": fit needs a valid input mesh");
   setup_ = prepare_fit(c, std::move(mesh), settings_, c.file.string());

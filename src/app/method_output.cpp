@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 
@@ -36,7 +37,12 @@ void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q) {
   report.nodes = mesh.n_nodes();
   report.elements = mesh.n_cells();
   report.inverted_elements = q.inverted_elements;
-  report.valid = q.inverted_elements == 0;
+  report.flipped_elements = q.flipped_cells.size();
+  if (q.n_cells > 0) {
+    report.cell_volume = q.cell_volume;
+    report.enclosed_volume = q.enclosed_volume;
+  }
+  report.valid = q.valid();
   if (q.has_input) {
     report.min_quality = q.min_quality;
     report.mean_quality = q.mean_quality;
@@ -53,10 +59,28 @@ QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, 
   report.boundary_error_l2 = err_l2;
   if (!report.valid) {
     report.converged = false;
-    report.message = std::to_string(q.inverted_elements) + " inverted elements" +
-                     (report.message.empty() ? std::string() : "; " + report.message);
+    report.message = invalid_message(q) + (report.message.empty() ? std::string() : "; " + report.message);
   }
   return q;
+}
+
+std::string invalid_message(const QualityReport& q) {
+  std::string s;
+  if (q.inverted_elements > 0) s = std::to_string(q.inverted_elements) + " inverted elements";
+  if (q.overlapping) {
+    char volumes[160];
+    std::snprintf(volumes, sizeof volumes, "the cells add up to %.10g, the boundary encloses %.10g", q.cell_volume,
+                  q.enclosed_volume);
+    s += (s.empty() ? "" : "; ") + std::string("the mesh overlaps itself: ");
+    if (!q.flipped_cells.empty())
+      s += std::to_string(q.flipped_cells.size()) + " cell" + (q.flipped_cells.size() > 1 ? "s" : "") +
+           " listed mirrored against " + (q.flipped_cells.size() > 1 ? "their" : "its") + " neighbours (cell " +
+           std::to_string(q.flipped_cells.front()) + (q.flipped_cells.size() > 1 ? ", …" : "") + "); ";
+    else if (q.twisted)
+      s += "no orientation fits its cells; ";
+    s += volumes;
+  }
+  return s;
 }
 
 std::string inverted_input(const CaseFile& c, std::size_t inverted) {

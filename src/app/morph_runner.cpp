@@ -24,6 +24,7 @@ MorphRunner::MorphRunner(const CaseFile& c, Mesh mesh, int threads) : where_(c.f
   check_case_against_mesh(c, input_);
   settings_ = read_morph_settings(c, threads);
   if (c.order && below_order(input_, *c.order)) input_ = elevate_order(input_, *c.order);
+  orient_cells(c, input_);
   if (const std::size_t bad = count_invalid_cells(input_); bad > 0)
     throw InputError(detail::inverted_input(c, bad) + ": morph needs a valid input mesh (untangle recovers one)");
   topology_ = build_topology(input_);

@@ -99,6 +99,7 @@ OptimizeRunner::OptimizeRunner(const CaseFile& c, Mesh mesh, int threads, const 
   const ScopedThreads scoped(threads_);
   settings_ = read_optimize_settings(c, flags, input_.dim, threads_);
   if (c.order && below_order(input_, *c.order)) input_ = elevate_order(input_, *c.order);
+  orient_cells(c, input_);
   topology_ = build_topology(input_);
   initial_inverted_ = count_invalid_cells(input_);
   if (initial_inverted_ > 0 && settings_.options.target == TargetKind::Input)

@@ -20,12 +20,12 @@ QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh*
   }
   QualityOutput out;
   const QualityReport& q = out.quality = quality_report(mesh, reference);
-  const bool valid = q.inverted_elements == 0;
+  const bool valid = q.valid();
   Report& r = out.report;
   r.method = "quality";
   detail::fill_measures(r, mesh, q);
   r.converged = valid;
-  r.message = valid ? "all elements valid" : std::to_string(q.inverted_elements) + " inverted elements";
+  r.message = valid ? "all elements valid" : detail::invalid_message(q);
   out.extra["mesh"] = name;
   out.extra["mean_shape_quality"] = std::isfinite(q.mean_shape_quality) ? nlohmann::ordered_json(q.mean_shape_quality)
                                                                         : nlohmann::ordered_json(nullptr);

@@ -28,6 +28,7 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
   std::optional<UntangleReference> reference;
   options_ = read_untangle_options(c.options, where_, threads, reference);
   if (c.order && below_order(input_, *c.order)) input_ = elevate_order(input_, *c.order);
+  orient_cells(c, input_);
   input_inverted_ = count_invalid_cells(input_);
   resolve_untangle_reference(options_, reference, input_inverted_, where_);
   topology_ = build_topology(input_);

@@ -33,7 +33,9 @@ Outcome run_check(const std::string& path, std::ostream& out) {
   if (std::none_of(c.boundary.begin(), c.boundary.end(),
                    [](const BoundaryCondition& b) { return std::holds_alternative<ProjectMotion>(b.motion); }))
     BoundaryMotion(c.boundary, c.file.string(), mesh, build_topology(mesh));
-  const std::size_t inverted = count_invalid_cells(mesh);
+  Mesh oriented = mesh;
+  const std::size_t reoriented = orient_cells(c, oriented);
+  const std::size_t inverted = count_invalid_cells(oriented);
 
   out << "case     " << path << "\n"
       << "mesh     " << c.mesh.string() << ": " << mesh.dim << "D, " << mesh.n_nodes() << " nodes, " << mesh.n_cells()
@@ -44,6 +46,7 @@ Outcome run_check(const std::string& path, std::ostream& out) {
     out << "boundary " << bc.key_path << ": group \"" << bc.group << "\" (" << mesh.group_nodes(*group).size()
         << " nodes): " << motion_name(bc.motion) << "\n";
   }
+  if (reoriented > 0) out << "reorient " << reoriented << " cells listed mirrored against their neighbours\n";
   out << "steps    " << c.steps << "\n"
       << "inverted " << inverted << " of " << mesh.n_cells() << " input cells\n";
   return inverted == 0 ? Outcome::GoalReached : Outcome::GoalMissed;

@@ -20,7 +20,7 @@ namespace detail {
 
 Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
-  const CaseFile c = read_case_file(a.input);
+  const CaseFile c = with_flags(read_case_file(a.input), a);
   const DeformRunner runner(c, read_mesh(c.mesh), threads);
   const RunFiles files = run_files(a.output, a.report, &c, a.input);
 

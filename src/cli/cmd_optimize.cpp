@@ -26,7 +26,7 @@ struct OptimizeArgs : detail::MethodArgs {
 Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
-  const OptimizeRunner runner(c ? *c : bare_case(a.input), read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
+  const OptimizeRunner runner(detail::with_flags(c ? *c : bare_case(a.input), a), read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
                               OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
   // The rest of the run, its summary included, on the threads the runner picked for this size.
   if (runner.threads() > 0) omp_set_num_threads(runner.threads());

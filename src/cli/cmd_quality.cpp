@@ -55,6 +55,15 @@ void print_table(std::ostream& out, const std::string& file, const Mesh& mesh, c
   row("nodes", std::to_string(mesh.n_nodes()));
   row("elements", std::to_string(q.n_cells) + " (" + cell_summary(mesh) + ")");
   row("inverted elements", std::to_string(q.inverted_elements));
+  const std::size_t flipped = q.flipped_cells.size();
+  row("overlap", !q.overlapping ? std::string("none")
+                 : flipped == 0 ? std::string(q.twisted ? "no orientation fits the cells" : "the volumes do not add up")
+                                : std::to_string(flipped) + (flipped > 1 ? " cells" : " cell") +
+                                      " listed mirrored against the neighbours, first cell " +
+                                      std::to_string(q.flipped_cells.front()));
+  char volumes[64];
+  std::snprintf(volumes, sizeof volumes, "%.10g / %.10g", q.cell_volume, q.enclosed_volume);
+  row("volume cells / enclosed", volumes);
   row("shape quality min / mean", fixed(q.min_shape_quality) + " / " + fixed(q.mean_shape_quality) +
                                       "   (1/eta against the ideal element; 1 = ideal, 0 = inverted)");
   row("scaled Jacobian min", fixed(q.min_scaled_jacobian) + "   (Verdict; ParaView's \"Scaled Jacobian\")");
@@ -105,7 +114,7 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
 
 void add_quality_command(CLI::App& app, Command& run) {
   auto args = std::make_shared<QualityArgs>();
-  CLI::App* cmd = app.add_subcommand("quality", "Element quality table of a mesh (exit 1 if an element is inverted)");
+  CLI::App* cmd = app.add_subcommand("quality", "Element quality table of a mesh (exit 1 if an element is inverted or the cells overlap)");
   cmd->add_option("MESH", args->mesh, "Mesh file (.msh, .vtu, .mesh)")->required();
   cmd->add_option("--json", args->json, "Also write the report as JSON")->type_name("FILE");
   cmd->add_option("-o,--output", args->output, "Write the mesh with per-element quality as VTU cell data")

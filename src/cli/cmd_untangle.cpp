@@ -21,7 +21,7 @@ namespace detail {
 Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const std::optional<CaseFile> c = case_or_mesh(a.input);
-  const CaseFile& run_case = c ? *c : bare_case(a.input);
+  const CaseFile run_case = with_flags(c ? *c : bare_case(a.input), a);
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
   const RunFiles files = run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_untangled");
 

@@ -84,7 +84,7 @@ std::pair<std::size_t, std::size_t> Topology::locate(std::int32_t cell) const {
   return {b, static_cast<std::size_t>(cell) - block_offset[b]};
 }
 
-Topology build_topology(const Mesh& mesh) {
+Topology build_topology(const Mesh& mesh, TopologyParts parts) {
   Topology topo;
   const auto n_nodes = mesh.n_nodes();
   topo.block_offset.push_back(0);
@@ -114,7 +114,8 @@ Topology build_topology(const Mesh& mesh) {
         }
         keys.push_back(k);
       }
-      for (const auto& e : corner_edges(b.type)) edges.push_back({std::min(v[e[0]], v[e[1]]), std::max(v[e[0]], v[e[1]])});
+      if (parts == TopologyParts::All)
+        for (const auto& e : corner_edges(b.type)) edges.push_back({std::min(v[e[0]], v[e[1]]), std::max(v[e[0]], v[e[1]])});
     }
   }
   std::sort(edges.begin(), edges.end());
@@ -150,6 +151,7 @@ Topology build_topology(const Mesh& mesh) {
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   topo.boundary_corners = std::move(corners);
+  if (parts == TopologyParts::Facets) return topo;
 
   // node → cells
   topo.node_cell_offset.assign(n_nodes + 1, 0);

@@ -5,9 +5,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "meshmorph/error.h"
 #include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/orientation.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/quality/element_quality.h"
 #include "meshmorph/quality/scaled_jacobian.h"
@@ -50,6 +53,26 @@ std::size_t quality_bin(double q) {
   if (!(q > 0.0)) return 0;
   return std::min<std::size_t>(9, static_cast<std::size_t>(10.0 * q));
 }
+
+namespace {
+
+// Positive cells may still overlap: cells listed mirrored against their neighbours fold the
+// mesh over itself, and then their volumes add up to more than the boundary encloses.
+void injectivity(const Mesh& mesh, QualityReport& r) {
+  if (mesh.n_cells() == 0) return;
+  const Topology topology = build_topology(mesh, TopologyParts::Facets);
+  const std::vector<double> volumes = signed_volumes(mesh);
+  CellOrientation o = cell_orientation(mesh, topology, volumes);
+  const VolumeBalance balance = volume_balance(mesh, topology, volumes, o);
+  r.cell_volume = balance.cells;
+  r.enclosed_volume = balance.enclosed;
+  r.twisted = o.twisted_facet >= 0;
+  r.flipped_cells = std::move(o.flipped);
+  const bool finite = std::isfinite(balance.cells) && std::isfinite(balance.enclosed);
+  r.overlapping = !r.flipped_cells.empty() || r.twisted || (finite && !balance.balanced());
+}
+
+}  // namespace
 
 QualityReport quality_report(const Mesh& current, const Mesh* input) {
   if (input) check_compatible(current, *input);
@@ -99,6 +122,7 @@ QualityReport quality_report(const Mesh& current, const Mesh* input) {
   for (double s : r.scaled_jacobian) {
     if (std::isfinite(s)) r.min_scaled_jacobian = std::isnan(r.min_scaled_jacobian) ? s : std::min(r.min_scaled_jacobian, s);
   }
+  injectivity(current, r);
   return r;
 }
 

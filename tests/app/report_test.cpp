@@ -21,6 +21,9 @@ Report sample_report() {
   r.elements = 71234;
   r.valid = true;
   r.inverted_elements = 0;
+  r.flipped_elements = 0;
+  r.cell_volume = 2.5;
+  r.enclosed_volume = 2.5;
   r.min_quality = 0.575;
   r.mean_quality = 0.93;
   r.min_shape_quality = 0.31;
@@ -42,7 +45,7 @@ TEST(Report, WritesTheDocumentedKeysInOrder) {
   for (const auto& item : j.items()) keys.push_back(item.key());
   const std::vector<std::string> expected = {
       "meshmorph_version", "method", "case", "dim", "order", "nodes", "elements", "valid", "inverted_elements",
-      "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
+      "flipped_elements", "cell_volume", "enclosed_volume", "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
       "boundary_error_l2", "fit_error_max", "iterations", "seconds", "peak_memory_mb", "converged", "message",
       "history"};
   EXPECT_EQ(keys, expected);
@@ -79,6 +82,19 @@ TEST(Report, RoundTripsThroughAFile) {
   EXPECT_EQ(out.meshmorph_version, "0.1.0");
   // Only the report itself is left in the folder: the temporary file was renamed.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
+}
+
+// Reports written before the injectivity keys existed read back, with 0 flipped cells.
+TEST(Report, ReadsReportsWithoutTheInjectivityKeys) {
+  auto j = report_to_json(sample_report());
+  j.erase("flipped_elements");
+  j.erase("cell_volume");
+  j.erase("enclosed_volume");
+  const Report r = report_from_json(j, "r.json");
+  EXPECT_EQ(r.flipped_elements, 0u);
+  EXPECT_FALSE(r.cell_volume);
+  EXPECT_FALSE(r.enclosed_volume);
+  EXPECT_EQ(r.nodes, 13522u);
 }
 
 TEST(Report, PeakMemoryIsPositive) {

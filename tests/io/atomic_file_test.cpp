@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/io/atomic_file.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <chrono>
 #include <filesystem>
@@ -94,6 +97,29 @@ TEST_F(AtomicFile, TheNextWriteRemovesTheTemporariesOfAKilledRun) {
   EXPECT_TRUE(fs::exists(dir_ / ".other.vtu.tmp-AbC123"));
   EXPECT_TRUE(fs::exists(dir_ / ".out.vtu.tmp-AbC1234"));
   EXPECT_EQ(n_entries(dir_), 4u);
+}
+
+// SIGINT, SIGTERM or SIGHUP while a write is under way: the handlers remove its temporary and
+// the process ends as the signal would have it. A child process takes the signal, raised from
+// inside the write so that the temporary surely exists then.
+TEST_F(AtomicFile, ASignalDuringAWriteLeavesNoTemporary) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    SCOPED_TRACE(sig);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      remove_temporaries_on_signals();
+      write_atomically(dir_ / "out.vtu", false, [&](std::ostream& o) {
+        o << "partial" << std::flush;
+        std::raise(sig);
+      });
+      ::_exit(0);  // the signal ends the process before this
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << status;
+    EXPECT_EQ(n_entries(dir_), 0u);
+  }
 }
 
 TEST_F(AtomicFile, AMissingFolderIsAnIoError) {

@@ -29,6 +29,9 @@ struct CaseFile {
   std::optional<LevelSet> trim;
   int steps = 1;                     ///< ≥ 1
   bool output_each_step = false;
+  /// List the cells that are mirrored against their neighbours the right way round instead of
+  /// refusing the mesh (orient_cells).
+  bool reorient = false;
   nlohmann::json options = nlohmann::json::object();  ///< validated by the method (OptionReader)
   std::optional<std::filesystem::path> output;  ///< .msh, .vtu or .mesh
   std::optional<std::filesystem::path> report;
@@ -61,6 +64,13 @@ void reject_unused_keys(const CaseFile& c, const std::string& method, std::initi
 /// are used only in 3D, and every node of a displacement table exists in the mesh with mesh.dim
 /// components. Throws InputError naming the case file and the key path.
 void check_case_against_mesh(const CaseFile& c, const Mesh& mesh);
+
+/// The mesh's cells oriented alike (DESIGN §2: a valid mesh is injective, and a cell listed
+/// mirrored against its neighbours folds it over itself, however a method moves the nodes).
+/// Without the case's "reorient" such a mesh is bad input: InputError naming the mesh, how
+/// many cells and the first. With it, those cells are listed mirrored back. Returns how many
+/// cells were reoriented.
+std::size_t orient_cells(const CaseFile& c, Mesh& mesh);
 
 /// Reads a displacement CSV: lines `node,dx,dy[,dz]` (the same number of columns on every
 /// line), an optional header line, blank lines ignored. Throws InputError `file:line: ...`

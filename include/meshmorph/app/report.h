@@ -35,6 +35,12 @@ struct Report {
   std::size_t elements = 0;
   bool valid = false;
   std::size_t inverted_elements = 0;
+  /// Cells listed mirrored against their neighbours, which fold the mesh over itself, and the
+  /// cells' volumes added up against the volume the boundary encloses (DESIGN §2: valid means
+  /// injective). Reports written without them read back as 0 and empty.
+  std::size_t flipped_elements = 0;
+  std::optional<double> cell_volume;
+  std::optional<double> enclosed_volume;
   std::optional<double> min_quality;          ///< q_e = 1/η_e against the input mesh
   std::optional<double> mean_quality;
   std::optional<double> min_shape_quality;    ///< the same against the ideal element

@@ -50,8 +50,12 @@ struct Topology {
   }
 };
 
+/// What build_topology builds: all of it, or the facets alone (block_offset, facets,
+/// boundary_facets, boundary_corners, cell neighbours) for walks from cell to cell.
+enum class TopologyParts { All, Facets };
+
 /// Builds the topology of the cells of `mesh`. Throws InputError if a facet is shared by
 /// more than two cells (a non-manifold mesh).
-Topology build_topology(const Mesh& mesh);
+Topology build_topology(const Mesh& mesh, TopologyParts parts = TopologyParts::All);
 
 }  // namespace meshmorph

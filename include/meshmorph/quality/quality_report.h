@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -18,6 +19,17 @@ struct QualityReport {
   std::size_t n_cells = 0;
   /// Cells with min_jacobian_det ≤ 0 over validity_samples, or non-finite coordinates.
   std::size_t inverted_elements = 0;
+  /// Injectivity (DESIGN §2, fem/orientation.h): the cells listed mirrored against the
+  /// mesh's orientation (global indices, ascending), whether no orientation fits the cells at
+  /// all, and the cells' signed volumes added up against the volume the boundary encloses.
+  std::vector<std::int32_t> flipped_cells;
+  bool twisted = false;
+  double cell_volume = 0.0;
+  double enclosed_volume = 0.0;
+  /// The cells overlap: a flipped cell, a twisted mesh, or volumes that do not add up.
+  bool overlapping = false;
+  /// Every cell positive and no overlap: the map is injective (DESIGN §2).
+  bool valid() const { return inverted_elements == 0 && !overlapping; }
   bool has_input = false;  ///< whether `quality` is against an input mesh
   /// q_e = 1/η_e against the input mesh (paper 000 eq. 9; 1 = undistorted, 0 = inverted).
   double min_quality = 0.0;

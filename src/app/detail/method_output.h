@@ -28,8 +28,13 @@ void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q);
 
 /// Measures `moved` and fills the mesh, quality and boundary fields of a method's report
 /// (DESIGN §3.3): quality against `input` unless it is null. An invalid result is not
-/// converged, whatever the method said, and the message says how many cells are inverted.
+/// converged, whatever the method said, and the message says why (invalid_message).
 QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc);
+
+/// Why a mesh measured by `q` is invalid: "3 inverted elements", "the mesh overlaps itself: 1
+/// cell listed mirrored against its neighbours (cell 4); the cells add up to …, the boundary
+/// encloses …". Empty for a valid mesh.
+std::string invalid_message(const QualityReport& q);
 
 /// "mesh.msh: 3 inverted elements" for a case read from a file, "Morpher: the mesh has 3
 /// inverted elements" for one whose mesh is in memory (CaseFile::mesh empty).

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "meshmorph/app/case_file.h"
 #include "meshmorph/cli/commands.h"
 
 namespace meshmorph::detail {
@@ -15,7 +16,14 @@ struct MethodArgs {
   std::string input;   ///< CASE.json, or (untangle, optimize) a mesh
   std::string output;  ///< -o: over the case's "output"
   std::string report;  ///< --report: over the case's "report"
+  bool reorient = false;  ///< --reorient: as the case's "reorient"
 };
+
+/// The case with the flags of the command line over its keys.
+inline CaseFile with_flags(CaseFile c, const MethodArgs& a) {
+  c.reorient = c.reorient || a.reorient;
+  return c;
+}
 
 /// The words of a method subcommand in --help.
 struct MethodHelp {
@@ -36,6 +44,8 @@ CLI::App* add_method_command(CLI::App& app, Command& run, const int& threads, co
   cmd->add_option(help.input, args->input, help.input_help)->required();
   cmd->add_option("-o,--output", args->output, help.output_help)->type_name("OUT");
   cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
+  cmd->add_flag("--reorient", args->reorient,
+                "List cells that are mirrored against their neighbours the right way round instead of refusing the mesh");
   cmd->callback([args, body, &run, &threads] {
     run = [args, body, &threads](std::ostream& out) { return body(*args, threads, out); };
   });
