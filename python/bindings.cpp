@@ -23,6 +23,7 @@
 #include "meshmorph/app/morph_case.h"
 #include "meshmorph/app/optimize_case.h"
 #include "meshmorph/app/quality_case.h"
+#include "meshmorph/threads.h"
 #include "meshmorph/app/untangle_case.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
@@ -79,6 +80,7 @@ std::pair<std::string, Mesh> run_case(const Mesh& mesh, const std::string& case_
   const CaseFile c = case_of(case_json, name, threads);
   Mesh copy = mesh;  // with the GIL: another thread may set mesh.points
   py::gil_scoped_release release;
+  const ScopedThreads scoped(threads);
   Runner runner(c, std::move(copy), threads);
   return reported(runner.run(), start);
 }
@@ -111,6 +113,7 @@ class Session {
   std::pair<std::string, Eigen::MatrixXd> solve(const Eigen::MatrixXd& target) {
     py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
+    const ScopedThreads scoped(threads_);
     const auto start = std::chrono::steady_clock::now();
     auto [report, moved] = reported(run(target), start);
     x_ = std::move(moved.x);
@@ -118,13 +121,14 @@ class Session {
   }
 
  protected:
-  explicit Session(std::string name) : name_(std::move(name)) {}
+  Session(std::string name, int threads) : name_(std::move(name)), threads_(threads) {}
   virtual RunOutput run(const Eigen::MatrixXd& target) = 0;
   void check_t(double t) const {
     if (!(t >= 0.0 && t <= 1.0)) throw InputError(name_ + ".solve: t must be in [0, 1], found " + std::to_string(t));
   }
 
   std::string name_;
+  int threads_;  // 0: the OpenMP default
   Eigen::MatrixXd x_;
   std::mutex mutex_;  // x_ and the runner's state belong to one solve at a time
 };
@@ -133,7 +137,8 @@ class Session {
 template <class Runner>
 class RunnerSession final : public Session {
  public:
-  RunnerSession(std::unique_ptr<Runner> runner, std::string name) : Session(std::move(name)), runner_(std::move(runner)) {
+  RunnerSession(std::unique_ptr<Runner> runner, std::string name, int threads)
+      : Session(std::move(name), threads), runner_(std::move(runner)) {
     x_ = runner_->input().x;
   }
   const Mesh& input() const override { return runner_->input(); }
@@ -152,12 +157,12 @@ std::unique_ptr<Session> morph_session(const Mesh& mesh, const std::string& case
   if (read_morph_settings(c, threads).method != "morph")
     throw InputError("Morpher: options.method: the Morpher runs \"morph\"; the baselines run from morph() and the "
                      "command line (meshmorph morph)");
-  return std::make_unique<RunnerSession<MorphRunner>>(std::make_unique<MorphRunner>(c, mesh, threads), "Morpher");
+  return std::make_unique<RunnerSession<MorphRunner>>(std::make_unique<MorphRunner>(c, mesh, threads), "Morpher", threads);
 }
 
 std::unique_ptr<Session> untangle_session(const Mesh& mesh, const std::string& case_json, int threads) {
   const CaseFile c = case_of(case_json, "Untangler", threads);
-  return std::make_unique<RunnerSession<UntangleRunner>>(std::make_unique<UntangleRunner>(c, mesh, threads), "Untangler");
+  return std::make_unique<RunnerSession<UntangleRunner>>(std::make_unique<UntangleRunner>(c, mesh, threads), "Untangler", threads);
 }
 
 // A solve's report text and its positions as (str, array).

@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <utility>
 
-#include <omp.h>
-
 #include "app/detail/method_output.h"
 #include "meshmorph/app/option_reader.h"
 #include "meshmorph/error.h"
@@ -13,24 +11,10 @@
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/log.h"
 #include "meshmorph/quality/metric_registry.h"
+#include "meshmorph/threads.h"
 
 namespace meshmorph {
 namespace {
-
-// omp_set_num_threads(threads) for the lifetime of the object (when threads > 0): every
-// element loop of a run (untangling, quality, validity) on the threads optimize picks.
-class ScopedThreads {
- public:
-  explicit ScopedThreads(int threads) : previous_(omp_get_max_threads()) {
-    if (threads > 0) omp_set_num_threads(threads);
-  }
-  ~ScopedThreads() { omp_set_num_threads(previous_); }
-  ScopedThreads(const ScopedThreads&) = delete;
-  ScopedThreads& operator=(const ScopedThreads&) = delete;
-
- private:
-  int previous_;
-};
 
 // The case's boundary entries as optimize takes them. Throws for motions it has no use for.
 std::vector<OptimizeEntry> optimize_entries(const CaseFile& c, const Mesh& mesh) {
