@@ -50,6 +50,7 @@ py::dict quality_dict(const QualityReport& q) {
   d["cells"] = q.n_cells;
   d["inverted_elements"] = q.inverted_elements;
   d["flipped_elements"] = q.flipped_cells.size();
+  d["boundary_crossings"] = q.boundary_crossings;
   d["cell_volume"] = q.cell_volume;
   d["enclosed_volume"] = q.enclosed_volume;
   d["valid"] = q.valid();

@@ -38,6 +38,7 @@ void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q) {
   report.elements = mesh.n_cells();
   report.inverted_elements = q.inverted_elements;
   report.flipped_elements = q.flipped_cells.size();
+  report.boundary_crossings = q.boundary_crossings;
   if (q.n_cells > 0) {
     report.cell_volume = q.cell_volume;
     report.enclosed_volume = q.enclosed_volume;
@@ -78,6 +79,9 @@ std::string invalid_message(const QualityReport& q) {
            std::to_string(q.flipped_cells.front()) + (q.flipped_cells.size() > 1 ? ", …" : "") + "); ";
     else if (q.twisted)
       s += "no orientation fits its cells; ";
+    if (q.boundary_crossings > 0)
+      s += "its boundary passes through itself (boundary facets " + std::to_string(q.crossing_facets[0]) + " and " +
+           std::to_string(q.crossing_facets[1]) + " cross, " + std::to_string(q.boundary_crossings) + " crossing pieces in all); ";
     s += volumes;
   }
   return s;

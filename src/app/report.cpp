@@ -61,6 +61,7 @@ ordered_json report_to_json(const Report& r) {
   j["valid"] = r.valid;
   j["inverted_elements"] = r.inverted_elements;
   j["flipped_elements"] = r.flipped_elements;
+  j["boundary_crossings"] = r.boundary_crossings;
   j["cell_volume"] = number_or_null(r.cell_volume);
   j["enclosed_volume"] = number_or_null(r.enclosed_volume);
   j["min_quality"] = number_or_null(r.min_quality);
@@ -109,6 +110,7 @@ Report report_from_json(const ordered_json& oj, const std::string& file) {
   r.valid = detail::read_bool(o.required("valid"), o.at("valid"));
   r.inverted_elements = read_count(o.required("inverted_elements"), o.at("inverted_elements"));
   if (const json* v = o.optional("flipped_elements")) r.flipped_elements = read_count(*v, o.at("flipped_elements"));
+  if (const json* v = o.optional("boundary_crossings")) r.boundary_crossings = read_count(*v, o.at("boundary_crossings"));
   if (const json* v = o.optional("cell_volume")) r.cell_volume = optional_number(*v, o.at("cell_volume"));
   if (const json* v = o.optional("enclosed_volume")) r.enclosed_volume = optional_number(*v, o.at("enclosed_volume"));
   r.min_quality = num("min_quality");

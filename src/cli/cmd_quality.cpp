@@ -57,7 +57,9 @@ void print_table(std::ostream& out, const std::string& file, const Mesh& mesh, c
   row("inverted elements", std::to_string(q.inverted_elements));
   const std::size_t flipped = q.flipped_cells.size();
   row("overlap", !q.overlapping ? std::string("none")
-                 : flipped == 0 ? std::string(q.twisted ? "no orientation fits the cells" : "the volumes do not add up")
+                 : flipped == 0 ? std::string(q.twisted                  ? "no orientation fits the cells"
+                                              : q.boundary_crossings > 0 ? "the boundary passes through itself"
+                                                                         : "the volumes do not add up")
                                 : std::to_string(flipped) + (flipped > 1 ? " cells" : " cell") +
                                       " listed mirrored against the neighbours, first cell " +
                                       std::to_string(q.flipped_cells.front()));

@@ -12,6 +12,7 @@
 #include "meshmorph/fem/jacobian.h"
 #include "meshmorph/fem/orientation.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/geometry/boundary_crossings.h"
 #include "meshmorph/quality/element_quality.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 
@@ -57,7 +58,8 @@ std::size_t quality_bin(double q) {
 namespace {
 
 // Positive cells may still overlap: cells listed mirrored against their neighbours fold the
-// mesh over itself, and then their volumes add up to more than the boundary encloses.
+// mesh over itself, and then their volumes add up to more than the boundary encloses; cells
+// listed alike overlap where the boundary passes through itself.
 void injectivity(const Mesh& mesh, QualityReport& r) {
   if (mesh.n_cells() == 0) return;
   const Topology topology = build_topology(mesh, TopologyParts::Facets);
@@ -69,7 +71,10 @@ void injectivity(const Mesh& mesh, QualityReport& r) {
   r.twisted = o.twisted_facet >= 0;
   r.flipped_cells = std::move(o.flipped);
   const bool finite = std::isfinite(balance.cells) && std::isfinite(balance.enclosed);
-  r.overlapping = !r.flipped_cells.empty() || r.twisted || (finite && !balance.balanced());
+  const BoundaryCrossings crossings = boundary_crossings(mesh, topology);
+  r.boundary_crossings = crossings.count;
+  r.crossing_facets = crossings.first;
+  r.overlapping = !r.flipped_cells.empty() || r.twisted || (finite && !balance.balanced()) || crossings.count > 0;
 }
 
 }  // namespace

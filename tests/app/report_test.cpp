@@ -45,7 +45,7 @@ TEST(Report, WritesTheDocumentedKeysInOrder) {
   for (const auto& item : j.items()) keys.push_back(item.key());
   const std::vector<std::string> expected = {
       "meshmorph_version", "method", "case", "dim", "order", "nodes", "elements", "valid", "inverted_elements",
-      "flipped_elements", "cell_volume", "enclosed_volume", "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
+      "flipped_elements", "boundary_crossings", "cell_volume", "enclosed_volume", "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
       "boundary_error_l2", "fit_error_max", "iterations", "seconds", "peak_memory_mb", "converged", "message",
       "history"};
   EXPECT_EQ(keys, expected);
@@ -88,10 +88,12 @@ TEST(Report, RoundTripsThroughAFile) {
 TEST(Report, ReadsReportsWithoutTheInjectivityKeys) {
   auto j = report_to_json(sample_report());
   j.erase("flipped_elements");
+  j.erase("boundary_crossings");
   j.erase("cell_volume");
   j.erase("enclosed_volume");
   const Report r = report_from_json(j, "r.json");
   EXPECT_EQ(r.flipped_elements, 0u);
+  EXPECT_EQ(r.boundary_crossings, 0u);
   EXPECT_FALSE(r.cell_volume);
   EXPECT_FALSE(r.enclosed_volume);
   EXPECT_EQ(r.nodes, 13522u);

@@ -7,7 +7,9 @@
 # listed mirrored. Every method refuses a flipped input with exit 2, naming the cell and
 # writing nothing; with --reorient (or the case's "reorient") untangle and optimize give
 # meshes whose volumes add up to the enclosed 1 to 1e-12; `quality` calls the folded outputs
-# invalid (overlap) with exit 1; `check` refuses the case.
+# invalid (overlap) with exit 1; `check` refuses the case. DATA/folded/crossing moves the
+# hole of a mesh so that its boundary passes through itself, every cell still positive: morph
+# exits 1 and writes nothing, and `quality` calls the mesh a build once wrote there invalid.
 set -u
 mm=$1 data=$(realpath "$2/folded") work=$3
 rm -rf "$work" && mkdir -p "$work/out"
@@ -72,4 +74,15 @@ for folded in folded_square_untangled folded_square_optimized; do
   near_one "$(field "$work/$folded.json" enclosed_volume)" || fail "quality $folded: enclosed volume"
   near_one "$(field "$work/$folded.json" cell_volume)" && fail "quality $folded: the cells add up to 1"
 done
+# A boundary motion that drives the boundary through itself.
+"$mm" --quiet morph "$data/crossing/case.json" -o "$work/out/crossing.msh" --report "$work/crossing.json" > "$work/crossing.out"
+rc=$?
+[ "$rc" = 1 ] || fail "morph crossing: exit $rc, expected 1"
+[ ! -e "$work/out/crossing.msh" ] || fail "morph crossing: wrote the overlapping mesh"
+grep -q "boundary passes through itself" "$work/crossing.json" || fail "morph crossing: the report does not say why"
+"$mm" --quiet quality "$data/crossing_morphed.mesh" --json "$work/crossing_quality.json" > /dev/null
+rc=$?
+[ "$rc" = 1 ] || fail "quality crossing_morphed: exit $rc, expected 1"
+[ "$(field "$work/crossing_quality.json" inverted_elements)" = 0 ] || fail "quality crossing_morphed: inverted cells"
+[ "$(field "$work/crossing_quality.json" boundary_crossings)" -ge 1 ] || fail "quality crossing_morphed: no crossing"
 echo "orientation checks passed"

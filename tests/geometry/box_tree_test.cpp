@@ -3,6 +3,7 @@
 // brute-force nearest; every item sits in exactly one leaf; trees of 1 to 5 items.
 #include "geometry/detail/box_tree.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <utility>
@@ -110,6 +111,27 @@ TEST(BoxTree, BoxDistance) {
   EXPECT_EQ(BoxTree::box_distance2(V(0.5, 1, 1), lo, hi), 0.0);
   EXPECT_EQ(BoxTree::box_distance2(V(-1, 1, 1), lo, hi), 1.0);
   EXPECT_EQ(BoxTree::box_distance2(V(2, 4, -3), lo, hi), 1.0 + 4.0 + 9.0);
+}
+
+// A box query visits every item whose box meets the query box (and the caller's own test
+// keeps exactly the brute-force set).
+TEST(BoxTree, OverlappingVisitsEveryItemWhoseBoxMeetsTheQuery) {
+  const Triangles t = random_triangles(500, false, 11);
+  const BoxTree tree(t.lo, t.hi, t.centroid);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int q = 0; q < 50; ++q) {
+    const V lo(u(rng), u(rng), u(rng)), hi = lo + V::Constant(0.1 * u(rng));
+    const auto meets = [&](int i) { return !(t.lo.col(i).array() > hi.array()).any() && !(t.hi.col(i).array() < lo.array()).any(); };
+    std::vector<int> found, expected;
+    tree.overlapping(lo, hi, [&](int i) {
+      if (meets(i)) found.push_back(i);
+    });
+    for (int i = 0; i < 500; ++i)
+      if (meets(i)) expected.push_back(i);
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(found, expected);
+  }
 }
 
 }  // namespace

@@ -37,8 +37,10 @@ struct Report {
   std::size_t inverted_elements = 0;
   /// Cells listed mirrored against their neighbours, which fold the mesh over itself, and the
   /// cells' volumes added up against the volume the boundary encloses (DESIGN §2: valid means
-  /// injective). Reports written without them read back as 0 and empty.
+  /// injective), and where the boundary passes through itself. Reports written without them
+  /// read back as 0 and empty.
   std::size_t flipped_elements = 0;
+  std::size_t boundary_crossings = 0;  ///< pairs of boundary pieces that cross
   std::optional<double> cell_volume;
   std::optional<double> enclosed_volume;
   std::optional<double> min_quality;          ///< q_e = 1/η_e against the input mesh

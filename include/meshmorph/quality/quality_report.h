@@ -26,7 +26,11 @@ struct QualityReport {
   bool twisted = false;
   double cell_volume = 0.0;
   double enclosed_volume = 0.0;
-  /// The cells overlap: a flipped cell, a twisted mesh, or volumes that do not add up.
+  /// Pairs of boundary pieces that cross, and the first pair's facets (Topology numbering).
+  std::size_t boundary_crossings = 0;
+  std::array<std::int32_t, 2> crossing_facets{-1, -1};
+  /// The cells overlap: a flipped cell, a twisted mesh, volumes that do not add up, or a
+  /// boundary that passes through itself.
   bool overlapping = false;
   /// Every cell positive and no overlap: the map is injective (DESIGN §2).
   bool valid() const { return inverted_elements == 0 && !overlapping; }

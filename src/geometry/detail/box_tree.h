@@ -43,6 +43,23 @@ class BoxTree {
     }
   }
 
+  /// Calls visit(item) for each item of a leaf whose box meets [lo, hi] (closed boxes): the
+  /// candidates of a box query, each item's own box still to be tested by the caller.
+  template <class Visit>
+  void overlapping(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Visit&& visit) const {
+    std::array<int, 128> stack{0};
+    for (std::size_t top = 1; top > 0;) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+      if ((n.lo.array() > hi.array()).any() || (n.hi.array() < lo.array()).any()) continue;
+      if (n.left < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i) visit(items_[static_cast<std::size_t>(i)]);
+        continue;
+      }
+      stack[top++] = n.left + 1;
+      stack[top++] = n.left;
+    }
+  }
+
  private:
   struct Node {
     Eigen::Vector3d lo, hi;
