@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <string_view>
 
+#include "meshmorph/error.h"
 #include "meshmorph/mesh/mesh.h"
 
 namespace meshmorph::fuzz {
@@ -38,6 +42,18 @@ inline void check_mesh(const Mesh& m) {
     if (!(std::abs(m.x.data()[j]) <= kMaxCoordinate)) fail("has a coordinate beyond kMaxCoordinate");
   for (const auto& [name, values] : m.node_fields)
     if (static_cast<std::size_t>(values.size()) != m.n_nodes()) fail("has a node field without one value per node");
+}
+
+/// The body of a reader's fuzz target: `parse` reads the bytes as `file`. Bad input must end
+/// in InputError; any other exception, a sanitizer report or a mesh that breaks check_mesh is
+/// a crash.
+inline int read_bytes(Mesh (*parse)(std::string_view, const std::filesystem::path&), const std::uint8_t* data,
+                      std::size_t size, const char* file) {
+  try {
+    check_mesh(parse(std::string_view(reinterpret_cast<const char*>(data), size), file));
+  } catch (const InputError&) {
+  }
+  return 0;
 }
 
 }  // namespace meshmorph::fuzz
