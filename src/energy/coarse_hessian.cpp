@@ -25,7 +25,10 @@ void coarse_points(const std::vector<Eigen::MatrixXd>& gradients, int corners, c
   std::array<Block, detail::k_packed(d)> blocks;
   for (Block& b : blocks) b.setZero(corners, corners);
   for (int q = 0; q < Q; ++q) {
-    const auto [entry, stride] = detail::point_entries<d>(K, lanes, c, Q, q);
+    // Not a structured binding: clang before 16 cannot capture one in a lambda.
+    const auto entries = detail::point_entries<d>(K, lanes, c, Q, q);
+    const auto entry = entries.first;
+    const int stride = entries.second;
     const auto Kq = [&](int i, int j) {  // K_q(i, j) from the packed upper triangle
       return static_cast<double>(entry[(i <= j ? detail::packed_index(dd, i, j) : detail::packed_index(dd, j, i)) * stride]);
     };

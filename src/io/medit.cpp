@@ -39,8 +39,9 @@ bool next(detail::Cursor& c) {
 
 }  // namespace
 
-Mesh read_medit(const std::filesystem::path& path) {
-  const std::string data = detail::read_file(path);
+Mesh read_medit(const std::filesystem::path& path) { return parse_medit(detail::read_file(path), path); }
+
+Mesh parse_medit(std::string_view data, const std::filesystem::path& path) {
   detail::Cursor c(path, data);
   if (!next(c)) c.fail_at(0, "empty file");
   detail::MeshBuilder builder;

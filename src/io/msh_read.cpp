@@ -104,8 +104,9 @@ void skip_section(Cursor& c, std::string_view name, std::size_t at) {
 }  // namespace
 }  // namespace detail
 
-Mesh read_msh(const std::filesystem::path& path) {
-  const std::string data = detail::read_file(path);
+Mesh read_msh(const std::filesystem::path& path) { return parse_msh(detail::read_file(path), path); }
+
+Mesh parse_msh(std::string_view data, const std::filesystem::path& path) {
   detail::MshState s{detail::Cursor(path, data), {}, {}, false, false, {}, {}, {}};
   detail::Cursor& c = s.cur;
   if (!c.skip_space()) c.fail_at(0, "empty file");

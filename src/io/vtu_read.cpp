@@ -200,8 +200,9 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
 
 }  // namespace
 
-Mesh read_vtu(const std::filesystem::path& path) {
-  const std::string data = detail::read_file(path);
+Mesh read_vtu(const std::filesystem::path& path) { return parse_vtu(detail::read_file(path), path); }
+
+Mesh parse_vtu(std::string_view data, const std::filesystem::path& path) {
   VtuFile f;
   f.path = path;
   f.text = data;
@@ -218,7 +219,7 @@ Mesh read_vtu(const std::filesystem::path& path) {
     f.appended = mark + 1;
     f.appended_end = end;
     // Trailing whitespace before the end tag is not part of the last array.
-    xml = data.substr(0, mark + 1) + data.substr(end);
+    xml = std::string(data.substr(0, mark + 1)).append(data.substr(end));
   } else {
     xml = data;
   }

@@ -107,7 +107,8 @@ std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology,
   std::vector<int> parent(bf.size());
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<std::pair<std::int32_t, std::int32_t>> sharp;
-  for (const auto& [key, uses] : joints) {
+  for (const auto& joint : joints) {
+    const auto& uses = joint.second;  // not a structured binding: clang before 16 cannot capture one
     // Planes only: facets join when they lie on one plane (a patch is then a plane).
     const auto joins = [&](int i, int j) {
       return curved ? normal_at(i, uses[0].second).dot(normal_at(j, uses[1].second)) >= cos_feature
@@ -116,7 +117,7 @@ std::vector<FitTerm> boundary_slides(const Mesh& mesh, const Topology& topology,
     if (uses.size() == 2 && joins(uses[0].first, uses[1].first)) {
       parent[static_cast<std::size_t>(root(parent, uses[0].first))] = root(parent, uses[1].first);
     } else if (uses.size() > 1) {
-      sharp.push_back(key);
+      sharp.push_back(joint.first);
     }
   }
   std::map<int, int> patch_of_root;

@@ -181,7 +181,9 @@ class MorphImpl final : public Morpher::Impl {
   // their targets (the slide nodes are on their planes already): its regularized volume lets
   // the cells that this placing inverts come back.
   void finish_by_untangle(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step, MorphResult& result) {
-    MorphResult::Finish& f = result.finish.emplace();
+    // From a value: clang before 16 takes a nested struct with member initializers for one
+    // without a default constructor inside std::optional.
+    MorphResult::Finish& f = result.finish.emplace(MorphResult::Finish{});
     f.stall = result.message;
     f.boundary_error_max = result.history.back().boundary_error_max;
     // The stalled λ and μ (≥ 1e12 μ₀) would start the next step of a series at the condition

@@ -66,7 +66,12 @@ FloatFactor::Supernode FloatFactor::supernode(int s) const {
 }
 
 void FloatFactor::forward(int s) const {
-  const auto [k1, nc, nr, rows, L] = supernode(s);
+  // Named copies, not a structured binding: clang before 16 cannot capture one in a lambda
+  // or an OpenMP region.
+  const Supernode sn = supernode(s);
+  const int k1 = sn.k1, nc = sn.nc, nr = sn.nr;
+  const int* rows = sn.rows;
+  const float* L = sn.L;
   const auto col = [&](int j) { return L + static_cast<std::ptrdiff_t>(j) * nr; };
   double* y = y_.data();
   double* t = work_.data();
@@ -92,7 +97,10 @@ void FloatFactor::forward(int s) const {
 }
 
 void FloatFactor::backward(int s) const {
-  const auto [k1, nc, nr, rows, L] = supernode(s);
+  const Supernode sn = supernode(s);
+  const int k1 = sn.k1, nc = sn.nc, nr = sn.nr;
+  const int* rows = sn.rows;
+  const float* L = sn.L;
   const auto col = [&](int j) { return L + static_cast<std::ptrdiff_t>(j) * nr; };
   double* y = y_.data();
   double* t = work_.data();

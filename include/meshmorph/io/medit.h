@@ -2,6 +2,7 @@
 #pragma once
 #include <filesystem>
 #include <ostream>
+#include <string_view>
 
 #include "meshmorph/mesh/mesh.h"
 
@@ -15,6 +16,9 @@ namespace meshmorph {
 /// solutions in separate .sol files, which are not read). Curved (P2…) keywords and other
 /// keywords are an InputError ("file: line N: …").
 Mesh read_medit(const std::filesystem::path& path);
+
+/// read_medit on the bytes of a file held in memory; `file` names it in messages.
+Mesh parse_medit(std::string_view data, const std::filesystem::path& file);
 
 /// Writes an ASCII Medit .mesh file (MeshVersionFormatted 2): vertices (the reference is
 /// the physical tag of a Point facet on the node, else 0), then facets and cells with

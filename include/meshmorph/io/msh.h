@@ -2,6 +2,7 @@
 #pragma once
 #include <filesystem>
 #include <ostream>
+#include <string_view>
 
 #include "meshmorph/mesh/mesh.h"
 
@@ -25,6 +26,9 @@ namespace meshmorph {
 /// unsupported element types, $NodeData before $Nodes, a record of an undefined node tag, or
 /// a node without a value; IoError when the file cannot be read.
 Mesh read_msh(const std::filesystem::path& path);
+
+/// read_msh on the bytes of a file held in memory; `file` names it in messages.
+Mesh parse_msh(std::string_view data, const std::filesystem::path& file);
 
 /// Writes a mesh as MSH `version` 41 (4.1) or 22 (2.2), ASCII or binary (little-endian,
 /// size_t = 8). Facets are written before cells; consecutive cells with the same

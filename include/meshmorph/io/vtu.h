@@ -4,6 +4,7 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "meshmorph/mesh/mesh.h"
@@ -23,6 +24,9 @@ namespace meshmorph {
 /// components, String and Bit arrays are skipped. With several pieces, each must have the
 /// same scalar arrays. Node tags are 1..n. Throws InputError ("file: line N: …") for malformed content.
 Mesh read_vtu(const std::filesystem::path& path);
+
+/// read_vtu on the bytes of a file held in memory; `file` names it in messages.
+Mesh parse_vtu(std::string_view data, const std::filesystem::path& file);
 
 /// Writes a .vtu file (little-endian, UInt64 headers; `version="2.2"` when Lagrange
 /// hexahedra are present, as VTK does, else "1.0"): Points as Float64 with 3 components,
