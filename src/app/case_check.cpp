@@ -157,8 +157,8 @@ std::size_t orient_cells(const CaseFile& c, Mesh& mesh) {
   const Topology topology = build_topology(mesh, TopologyParts::Facets);
   const CellOrientation o = cell_orientation(mesh, topology, signed_volumes(mesh));
   const std::string where = c.mesh.empty() ? c.file.string() + ": the mesh" : c.mesh.string();
-  if (o.twisted_facet >= 0)
-    throw InputError(where + ": no orientation fits the cells around facet " + std::to_string(o.twisted_facet) +
+  if (o.twisted_cell >= 0)
+    throw InputError(where + ": no orientation fits the cells around cell " + std::to_string(o.twisted_cell) +
                      " (a non-orientable mesh cannot be placed without overlapping itself)");
   if (o.flipped.empty()) return 0;
   if (!c.reorient) {

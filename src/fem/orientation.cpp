@@ -43,6 +43,17 @@ Corners facet_corners(const CellBlock& b, std::size_t c, int f) {
   return out;
 }
 
+// Whether two facets have the same corners (distinct within each facet), in any order.
+bool same_corners(const Corners& a, const Corners& b) {
+  if (a.n != b.n) return false;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    bool found = false;
+    for (std::size_t j = 0; j < b.n; ++j) found = found || a.v[i] == b.v[j];
+    if (!found) return false;
+  }
+  return true;
+}
+
 // Two cells are oriented alike when each lists their shared facet the other way round: the
 // same cycle of corners, reversed (for a line facet: the same two corners swapped).
 bool alike(const Corners& a, const Corners& b) {
@@ -125,32 +136,23 @@ std::vector<double> signed_volumes(const Mesh& mesh) {
 
 CellOrientation cell_orientation(const Mesh& mesh, const Topology& topology, const std::vector<double>& volumes) {
   const std::size_t n = topology.block_offset.back();
-  auto facet_of = [&](const CellFacet& cf) {
-    const auto [b, c] = topology.locate(cf.cell);
-    return facet_corners(mesh.cells[b], c, cf.local);
+  auto corners = [&](std::int32_t cell, int local) {
+    const auto [b, c] = topology.locate(cell);
+    return facet_corners(mesh.cells[b], c, local);
   };
-  // Whether the two cells of each interior facet are alike, by facet index.
-  std::vector<std::int8_t> same(topology.facets.size(), 1);
-  for (std::size_t f = 0; f < topology.facets.size(); ++f)
-    if (topology.facets[f][1].cell >= 0) same[f] = alike(facet_of(topology.facets[f][0]), facet_of(topology.facets[f][1]));
-  // cell → (neighbour, facet) pairs, from the facets.
-  std::vector<std::int64_t> offset(n + 1, 0);
-  for (const auto& f : topology.facets)
-    if (f[1].cell >= 0) ++offset[static_cast<std::size_t>(f[0].cell) + 1], ++offset[static_cast<std::size_t>(f[1].cell) + 1];
-  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
-  std::vector<std::int32_t> across(static_cast<std::size_t>(offset[n])), via(across.size());
-  {
-    std::vector<std::int64_t> fill(offset.begin(), offset.end() - 1);
-    for (std::size_t f = 0; f < topology.facets.size(); ++f) {
-      const auto& p = topology.facets[f];
-      if (p[1].cell < 0) continue;
-      for (int s = 0; s < 2; ++s) {
-        const auto k = static_cast<std::size_t>(fill[static_cast<std::size_t>(p[s].cell)]++);
-        across[k] = p[1 - s].cell;
-        via[k] = static_cast<std::int32_t>(f);
-      }
+  // Whether cell m, across local facet l of cell c, is listed alike with c: m's facet with the
+  // same corners runs the other way round.
+  auto alike_across = [&](std::int32_t c, int l, std::int32_t m) {
+    const Corners a = corners(c, l);
+    const auto first = topology.cell_neighbor_offset[static_cast<std::size_t>(m)];
+    const auto count = topology.cell_neighbor_offset[static_cast<std::size_t>(m) + 1] - first;
+    for (int k = 0; k < count; ++k) {
+      if (topology.cell_neighbors[static_cast<std::size_t>(first + k)] != c) continue;
+      const Corners b = corners(m, k);
+      if (same_corners(a, b)) return alike(a, b);
     }
-  }
+    return true;  // not reached: topology lists c across one of m's facets
+  };
 
   CellOrientation out;
   std::vector<std::int8_t> parity(n, -1);
@@ -164,15 +166,18 @@ CellOrientation cell_orientation(const Mesh& mesh, const Topology& topology, con
       const auto c = static_cast<std::size_t>(stack.back());
       stack.pop_back();
       part.push_back(static_cast<std::int32_t>(c));
-      for (auto k = offset[c]; k < offset[c + 1]; ++k) {
-        const auto m = static_cast<std::size_t>(across[static_cast<std::size_t>(k)]);
-        const auto f = static_cast<std::size_t>(via[static_cast<std::size_t>(k)]);
-        const auto want = static_cast<std::int8_t>(parity[c] ^ (same[f] ? 0 : 1));
-        if (parity[m] < 0) {
-          parity[m] = want;
-          stack.push_back(static_cast<std::int32_t>(m));
-        } else if (parity[m] != want && out.twisted_facet < 0) {
-          out.twisted_facet = static_cast<std::int32_t>(f);
+      const auto first = topology.cell_neighbor_offset[c];
+      const auto count = topology.cell_neighbor_offset[c + 1] - first;
+      for (int l = 0; l < count; ++l) {
+        const std::int32_t m = topology.cell_neighbors[static_cast<std::size_t>(first + l)];
+        if (m < 0) continue;
+        const auto mi = static_cast<std::size_t>(m);
+        const auto want = static_cast<std::int8_t>(parity[c] ^ (alike_across(static_cast<std::int32_t>(c), l, m) ? 0 : 1));
+        if (parity[mi] < 0) {
+          parity[mi] = want;
+          stack.push_back(m);
+        } else if (parity[mi] != want && out.twisted_cell < 0) {
+          out.twisted_cell = static_cast<std::int32_t>(c);
         }
       }
     }

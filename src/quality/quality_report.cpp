@@ -68,7 +68,7 @@ void injectivity(const Mesh& mesh, QualityReport& r) {
   const VolumeBalance balance = volume_balance(mesh, topology, volumes, o);
   r.cell_volume = balance.cells;
   r.enclosed_volume = balance.enclosed;
-  r.twisted = o.twisted_facet >= 0;
+  r.twisted = o.twisted_cell >= 0;
   r.flipped_cells = std::move(o.flipped);
   const bool finite = std::isfinite(balance.cells) && std::isfinite(balance.enclosed);
   const BoundaryCrossings crossings = boundary_crossings(mesh, topology);

@@ -56,7 +56,7 @@ TEST_P(OrientationSweep, AMirroredCellIsNamedAndTheVolumesDifferByTwiceItsVolume
   const Topology mirrored = build_topology(mesh);
   const CellOrientation o = cell_orientation(mesh, mirrored, after);
   EXPECT_EQ(o.flipped, std::vector<std::int32_t>{cell});
-  EXPECT_EQ(o.twisted_facet, -1);
+  EXPECT_EQ(o.twisted_cell, -1);
   const VolumeBalance v = volume_balance(mesh, mirrored, after, o);
   EXPECT_FALSE(v.balanced());
   EXPECT_NEAR(v.enclosed, exact_volume(), 1e-13);

@@ -18,10 +18,10 @@ namespace meshmorph {
 /// mirrored (clockwise among counter-clockwise ones) is flipped whatever its shape.
 struct CellOrientation {
   std::vector<std::int32_t> flipped;  ///< global cell indices (Topology order), ascending
-  /// A facet around which the cells cannot be oriented alike (a non-orientable mesh, which
-  /// no valid placement has), or −1.
-  std::int32_t twisted_facet = -1;
-  bool consistent() const { return flipped.empty() && twisted_facet < 0; }
+  /// A cell that cannot be oriented alike with all its neighbours (a non-orientable mesh,
+  /// which no valid placement has), or −1.
+  std::int32_t twisted_cell = -1;
+  bool consistent() const { return flipped.empty() && twisted_cell < 0; }
 };
 /// `volumes`: signed_volumes(mesh).
 CellOrientation cell_orientation(const Mesh& mesh, const Topology& topology, const std::vector<double>& volumes);
