@@ -12,6 +12,7 @@
 
 #include <Eigen/LU>
 
+#include "meshmorph/error.h"
 #include "meshmorph/fem/shape_table.h"
 #include "meshmorph/fem/tensor_basis.h"
 
@@ -36,6 +37,13 @@ struct DetExpansion {
   int q = 0;
   Eigen::MatrixXd unit_lattice;   ///< dim × N: the lattice on the unit simplex or [0, 1]^d, x fastest
   Eigen::MatrixXd to_bernstein;   ///< simplices: N × N; tensor cells: (q+1) × (q+1), along each axis
+  Eigen::MatrixXd from_bernstein; ///< its inverse: the Bernstein polynomials at the lattice
+  std::vector<std::array<int, 4>> multi_index;  ///< simplices: α of each coefficient (α_0 = q − the rest)
+  std::vector<Eigen::Index> slot;               ///< simplices: α_1 + (q+1)(α_2 + (q+1) α_3) → its index
+  std::vector<Eigen::Index> corners;            ///< the coefficients at the cell's corners
+  Eigen::Index index_of(const std::array<int, 4>& alpha) const {
+    return slot[static_cast<std::size_t>(alpha[1] + (q + 1) * (alpha[2] + (q + 1) * alpha[3]))];
+  }
   ShapeTable table;               ///< simplices: (type, order) at the lattice of the reference cell
   TensorGrid grid;                ///< tensor cells: the lattice as a grid (sum factorization)
 };
@@ -67,11 +75,29 @@ std::unique_ptr<DetExpansion> make_expansion(ElementType type, int order) {
       }
     }
     e->to_bernstein = M.inverse();
+    e->from_bernstein = M;
+    e->slot.assign(static_cast<std::size_t>(std::lround(std::pow(q + 1, dim))), -1);
+    for (Eigen::Index a = 0; a < n; ++a) {
+      std::array<int, 4> alpha{q, 0, 0, 0};
+      for (int k = 0; k < dim; ++k) {
+        alpha[static_cast<std::size_t>(k + 1)] = static_cast<int>(std::lround(e->unit_lattice(k, a) * q));
+        alpha[0] -= alpha[static_cast<std::size_t>(k + 1)];
+      }
+      e->multi_index.push_back(alpha);
+      e->slot[static_cast<std::size_t>(alpha[1] + (q + 1) * (alpha[2] + (q + 1) * alpha[3]))] = a;
+      if (*std::max_element(alpha.begin(), alpha.end()) == q) e->corners.push_back(a);
+    }
   } else {
     Eigen::MatrixXd M(q + 1, q + 1);
     for (int i = 0; i <= q; ++i)
       for (int k = 0; k <= q; ++k) M(i, k) = binomial(q, k) * std::pow(double(i) / q, k) * std::pow(1.0 - double(i) / q, q - k);
     e->to_bernstein = M.inverse();
+    e->from_bernstein = M;
+    for (Eigen::Index a = 0; a < n; ++a) {
+      bool corner = true;
+      for (Eigen::Index k = 0, rest = a; k < topological_dim(type); ++k, rest /= q + 1) corner = corner && (rest % (q + 1) == 0 || rest % (q + 1) == q);
+      if (corner) e->corners.push_back(a);
+    }
     std::vector<double> x;
     for (int i = 0; i <= q; ++i) x.push_back(2.0 * i / q - 1.0);
     e->grid = tensor_grid(type, order, x);
@@ -98,9 +124,15 @@ void dets_at(const ShapeTable& t, const Eigen::MatrixXd& X, Eigen::VectorXd& v) 
   }
 }
 
-// Least Bernstein coefficient of the values v at the lattice.
-double least_coefficient(const DetExpansion& e, int dim, bool simplex, const Eigen::VectorXd& v) {
-  if (simplex) return (e.to_bernstein * v).minCoeff();
+template <int d>
+void lattice_dets(const DetExpansion& e, bool simplex, const Eigen::MatrixXd& X, Eigen::VectorXd& v) {
+  if (simplex) dets_at<d>(e.table, X, v);
+  else dets_on_grid<d>(e.grid, X, v);
+}
+
+// The Bernstein coefficients of the values v at the lattice.
+Eigen::VectorXd coefficients(const DetExpansion& e, int dim, bool simplex, const Eigen::VectorXd& v) {
+  if (simplex) return e.to_bernstein * v;
   // Along each axis in turn (the lattice index is i_0 + m (i_1 + m i_2), m = q + 1).
   const int m = e.q + 1;
   Eigen::VectorXd c = v, next(v.size());
@@ -116,30 +148,42 @@ double least_coefficient(const DetExpansion& e, int dim, bool simplex, const Eig
     }
     c.swap(next);
   }
-  return c.minCoeff();
+  return c;
+}
+
+// The value at lattice point i of a piece whose coefficients are c: the Bernstein polynomials
+// at the lattice (from_bernstein), contracted axis by axis on a tensor cell.
+double value_at(const DetExpansion& e, int dim, bool simplex, const Eigen::VectorXd& c, Eigen::Index i) {
+  if (simplex) return e.from_bernstein.row(i).dot(c);
+  const int m = e.q + 1;
+  Eigen::VectorXd line = c;
+  for (int axis = dim - 1; axis >= 0; --axis) {  // contract the slowest axis first
+    const Eigen::Index block = line.size() / m, ia = (i / static_cast<Eigen::Index>(std::lround(std::pow(m, axis)))) % m;
+    Eigen::VectorXd next = Eigen::VectorXd::Zero(block);
+    for (int k = 0; k < m; ++k) next += e.from_bernstein(ia, k) * line.segment(k * block, block);
+    line.swap(next);
+  }
+  return line(0);
 }
 
 // A piece of the reference cell: a simplex (its dim + 1 vertices as columns) or a box (its
-// lower and upper corners), both in reference coordinates.
+// lower and upper corners), both in reference coordinates, with the Bernstein coefficients of
+// det A on it.
 struct Piece {
   Eigen::MatrixXd corners;
+  Eigen::VectorXd c;
   int depth = 0;
 };
 
-Eigen::MatrixXd piece_points(bool simplex, const Piece& s, const Eigen::MatrixXd& unit) {
-  if (simplex) {
-    const Eigen::MatrixXd B = s.corners.rightCols(s.corners.cols() - 1).colwise() - s.corners.col(0);
-    return (B * unit).colwise() + s.corners.col(0);
-  }
-  return ((s.corners.col(1) - s.corners.col(0)).asDiagonal() * unit).colwise() + s.corners.col(0);
-}
-
-// The two halves of a piece, split across its longest edge (side).
-std::array<Piece, 2> halves(bool simplex, const Piece& s) {
+// The two halves of a piece, split across its longest edge (side), their coefficients by de
+// Casteljau's algorithm at 1/2 along each line of coefficients that runs across the split:
+// on a simplex split across edge ab, the multi-indices with the others fixed and α_a + α_b = s;
+// on a box, the lines along the split axis.
+std::array<Piece, 2> halves(const DetExpansion& e, bool simplex, const Piece& s) {
   std::array<Piece, 2> h{s, s};
   h[0].depth = h[1].depth = s.depth + 1;
+  Eigen::Index a = 0, b = 1, stride = 1;
   if (simplex) {
-    Eigen::Index a = 0, b = 1;
     double longest = -1.0;
     for (Eigen::Index i = 0; i < s.corners.cols(); ++i)
       for (Eigen::Index j = i + 1; j < s.corners.cols(); ++j)
@@ -153,8 +197,47 @@ std::array<Piece, 2> halves(bool simplex, const Piece& s) {
     const double mid = 0.5 * (s.corners(axis, 0) + s.corners(axis, 1));
     h[0].corners(axis, 1) = mid;
     h[1].corners(axis, 0) = mid;
+    for (Eigen::Index k = 0; k < axis; ++k) stride *= e.q + 1;
+  }
+  thread_local std::vector<Eigen::Index> line;
+  thread_local std::vector<double> w;
+  for (Eigen::Index i = 0; i < s.c.size(); ++i) {
+    line.clear();
+    if (simplex) {  // i starts a line where α_b = 0; its members step one unit from a to b
+      const auto& alpha = e.multi_index[static_cast<std::size_t>(i)];
+      if (alpha[static_cast<std::size_t>(b)] != 0) continue;
+      auto beta = alpha;
+      for (int j = 0; j <= alpha[static_cast<std::size_t>(a)]; ++j, --beta[static_cast<std::size_t>(a)], ++beta[static_cast<std::size_t>(b)])
+        line.push_back(e.index_of(beta));
+    } else {
+      if ((i / stride) % (e.q + 1) != 0) continue;
+      for (int j = 0; j <= e.q; ++j) line.push_back(i + j * stride);
+    }
+    w.resize(line.size());
+    for (std::size_t j = 0; j < line.size(); ++j) w[j] = s.c(line[j]);
+    const std::size_t n = line.size() - 1;
+    h[0].c(line[0]) = w[0];
+    h[1].c(line[n]) = w[n];
+    for (std::size_t r = 1; r <= n; ++r) {
+      for (std::size_t j = 0; j + r <= n; ++j) w[j] = 0.5 * (w[j] + w[j + 1]);
+      h[0].c(line[r]) = w[0];
+      h[1].c(line[n - r]) = w[n - r];
+    }
   }
   return h;
+}
+
+// The least det A that a piece's coefficients show: the lowest coefficient at a corner of the
+// piece (exactly det A there), else det A at the lattice point of the lowest coefficient when
+// that coefficient is ≤ 0; +inf when neither is ≤ 0.
+double negative_value(const DetExpansion& e, int dim, bool simplex, const Eigen::VectorXd& c) {
+  double corner = std::numeric_limits<double>::infinity();
+  for (const Eigen::Index i : e.corners) corner = std::min(corner, c(i));
+  if (corner <= 0.0) return corner;
+  Eigen::Index at = 0;
+  if (c.minCoeff(&at) > 0.0) return std::numeric_limits<double>::infinity();
+  const double value = value_at(e, dim, simplex, c, at);
+  return value <= 0.0 ? value : std::numeric_limits<double>::infinity();
 }
 
 template <int d>
@@ -162,15 +245,15 @@ double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X,
   const DetExpansion& e = expansion(type, order);
   const bool simplex = is_simplex(type);
   Eigen::VectorXd v;
-  if (simplex) dets_at<d>(e.table, X, v);
-  else dets_on_grid<d>(e.grid, X, v);
+  lattice_dets<d>(e, simplex, X, v);
   if (v.minCoeff() <= 0.0) return v.minCoeff();
-  if (least_coefficient(e, d, simplex, v) > 0.0) return sampled;
+  Piece root;
+  root.c = coefficients(e, d, simplex, v);
+  if (root.c.minCoeff() > 0.0) return sampled;
   // Undecided: halve and look again. 6d halvings make a piece 2^−6 of the cell in each
   // direction, where the coefficients are within 1/4096 of the values (O(h²)); the budget
   // bounds a cell whose det A touches zero without crossing it.
   constexpr int k_max_depth = 6 * d, k_budget = 2048;
-  Piece root;
   root.corners = simplex ? Eigen::MatrixXd(d, d + 1) : Eigen::MatrixXd(d, 2);
   if (simplex) root.corners << Eigen::MatrixXd::Zero(d, 1), Eigen::MatrixXd::Identity(d, d);
   else root.corners << -Eigen::VectorXd::Ones(d), Eigen::VectorXd::Ones(d);
@@ -179,11 +262,10 @@ double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X,
     const Piece s = stack.back();
     stack.pop_back();
     if (s.depth >= k_max_depth) continue;  // undecided at the finest level: as sampling said
-    for (const Piece& h : halves(simplex, s)) {
+    for (Piece& h : halves(e, simplex, s)) {
       ++examined;
-      dets_at<d>(tabulate(type, order, piece_points(simplex, h, e.unit_lattice)), X, v);
-      if (v.minCoeff() <= 0.0) return v.minCoeff();
-      if (least_coefficient(e, d, simplex, v) <= 0.0) stack.push_back(h);
+      if (const double value = negative_value(e, d, simplex, h.c); value <= 0.0) return value;
+      if (h.c.minCoeff() <= 0.0) stack.push_back(std::move(h));
     }
   }
   return sampled;
@@ -222,6 +304,16 @@ template void dets_on_grid<3>(const TensorGrid&, const Eigen::MatrixXd&, Eigen::
 bool det_needs_bounds(ElementType type, int order) {
   if (is_simplex(type)) return order > 1;
   return !(type == ElementType::Quadrilateral && order == 1);
+}
+
+Eigen::VectorXd det_bernstein_coefficients(ElementType type, int order, const Eigen::MatrixXd& X) {
+  const int dim = topological_dim(type);
+  MESHMORPH_CHECK(X.rows() == dim && det_needs_bounds(type, order), "det_bernstein_coefficients: a curved cell in its own dimension");
+  const DetExpansion& e = expansion(type, order);
+  Eigen::VectorXd v;
+  if (dim == 2) lattice_dets<2>(e, is_simplex(type), X, v);
+  else lattice_dets<3>(e, is_simplex(type), X, v);
+  return coefficients(e, dim, is_simplex(type), v);
 }
 
 double bezier_min_det(ElementType type, int order, const Eigen::MatrixXd& X, double sampled) {
