@@ -3,7 +3,6 @@
 // it; docs/python.md). It calls the case runners of the command line (app/*_case.h), so a
 // case gives the same report and mesh from both. Arrays cross as copies, n × d (a row per
 // node); the library runs without the GIL.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -68,8 +67,8 @@ py::dict quality_dict(const QualityReport& q) {
 }
 
 // A run's report as JSON text (seconds from `start`) and its mesh.
-std::pair<std::string, Mesh> reported(RunOutput&& run, std::chrono::steady_clock::time_point start) {
-  run.report.seconds = seconds_since(start);
+std::pair<std::string, Mesh> reported(RunOutput&& run, const RunTimings& timings) {
+  stamp_times(run.report, timings);
   return {run.json().dump(), std::move(run.moved)};
 }
 
@@ -77,13 +76,13 @@ std::pair<std::string, Mesh> reported(RunOutput&& run, std::chrono::steady_clock
 /// optimize()): the runner of the command line, its report as JSON text and the moved mesh.
 template <class Runner>
 std::pair<std::string, Mesh> run_case(const Mesh& mesh, const std::string& case_json, const std::string& name, int threads) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const CaseFile c = case_of(case_json, name, threads);
   Mesh copy = mesh;  // with the GIL: another thread may set mesh.points
   py::gil_scoped_release release;
   const ScopedThreads scoped(threads);
   Runner runner(c, std::move(copy), threads);
-  return reported(runner.run(), start);
+  return reported(runner.run(), timings);
 }
 
 /// A morph or untangle case on a mesh in memory, solved as often as the caller asks (the
@@ -115,8 +114,8 @@ class Session {
     py::gil_scoped_release release;
     std::lock_guard lock(mutex_);
     const ScopedThreads scoped(threads_);
-    const auto start = std::chrono::steady_clock::now();
-    auto [report, moved] = reported(run(target), start);
+    const RunTimings timings;
+    auto [report, moved] = reported(run(target), timings);
     x_ = std::move(moved.x);
     return {std::move(report), x_};
   }

@@ -15,7 +15,7 @@ import meshmorph
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 # Members that differ between two runs of one case: when and where, not what.
-RUN_MEMBERS = ("seconds", "peak_memory_mb", "case")
+RUN_MEMBERS = ("seconds", "timings", "peak_memory_mb", "case")
 
 
 def example_case(name, **changes):

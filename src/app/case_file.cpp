@@ -11,6 +11,7 @@
 #include "app/detail/json_reader.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph {
 
@@ -189,6 +190,7 @@ CaseFile bare_case(const std::filesystem::path& path) {
 }
 
 CaseFile read_case_file(const std::filesystem::path& path) {
+  const PhaseTimer timer(Phase::Io);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a folder, not a case file");
   std::ifstream in(path, std::ios::binary);

@@ -9,6 +9,7 @@
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph {
 
@@ -45,6 +46,7 @@ bool parse_tag(std::string_view s, std::int64_t& v) {
 }  // namespace
 
 DisplacementTable read_displacement_csv(const std::filesystem::path& path) {
+  const PhaseTimer timer(Phase::Io);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open the displacement file");
   note_input_file(path);

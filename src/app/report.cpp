@@ -87,6 +87,11 @@ ordered_json report_to_json(const Report& r) {
     for (const auto& [name, value] : row) o[name] = number_or_null(value);
     j["history"].push_back(std::move(o));
   }
+  j["timings"] = nullptr;
+  if (r.timings) {
+    j["timings"] = ordered_json::object();
+    for (int p = 0; p < k_phases; ++p) j["timings"][std::string(phase_key(Phase(p)))] = number_or_null((*r.timings)[Phase(p)]);
+  }
   return j;
 }
 
@@ -145,6 +150,16 @@ Report report_from_json(const ordered_json& oj, const std::string& file) {
       row.emplace_back(item.key(), optional_number(json(item.value()), w.key(item.key())).value_or(NAN));
     r.history.push_back(std::move(row));
   }
+  if (const json* t = o.optional("timings"); t && !t->is_null()) {
+    detail::ObjectReader to(*t, o.at("timings"));
+    Timings timings;
+    for (int p = 0; p < k_phases; ++p) {
+      const std::string key(phase_key(Phase(p)));
+      timings.seconds[static_cast<std::size_t>(p)] = optional_number(to.required(key), to.at(key)).value_or(0.0);
+    }
+    to.finish();
+    r.timings = timings;
+  }
   o.finish();
   return r;
 }
@@ -158,6 +173,7 @@ ordered_json report_json(Report report, const ordered_json& extra) {
 }
 
 void write_report(const std::filesystem::path& path, Report report, const ordered_json& extra) {
+  const PhaseTimer timer(Phase::Io);
   const std::string text = report_json(std::move(report), extra).dump(2) + "\n";
   write_atomically(path, false, [&](std::ostream& out) { out << text; });
 }

@@ -5,8 +5,10 @@ namespace meshmorph {
 
 nlohmann::ordered_json RunOutput::json() const { return report_json(report, extra); }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+void stamp_times(Report& report, const RunTimings& timings) {
+  report.timings = timings.totals();
+  report.seconds = 0.0;
+  for (const double s : report.timings->seconds) report.seconds += s;
 }
 
 }  // namespace meshmorph

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph fit CASE.json`: boundary and interface fitting to level sets (paper 003).
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -18,13 +17,13 @@ namespace meshmorph {
 namespace detail {
 
 Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const CaseFile c = with_flags(read_case_file(a.input), a);
   const FitRunner runner(c, read_mesh(c.mesh), threads);
   const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
   RunOutput run = runner.run();
-  write_run(run, files, seconds_since(start));
+  write_run(run, files, timings);
 
   const Report& report = run.report;
   const FitSetup& setup = runner.setup();

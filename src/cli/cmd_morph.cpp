@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph morph CASE.json`: boundary-displacement morphing by the augmented Lagrangian of
 // paper 000, or one of the two baselines (options.method = "laplace" | "elastic").
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -19,7 +18,7 @@ namespace meshmorph {
 namespace detail {
 
 Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const CaseFile c = with_flags(read_case_file(a.input), a);
   MorphRunner runner(c, read_mesh(c.mesh), threads);
   const RunFiles files = run_files(a.output, a.report, &c, a.input);
@@ -28,7 +27,7 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {
     if (c.output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
   });
-  write_run(run, files, seconds_since(start));
+  write_run(run, files, timings);
 
   const Report& report = run.report;
   const std::size_t guarded = run.extra.value("guarded_cells", std::size_t{0});

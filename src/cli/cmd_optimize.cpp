@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph optimize MESH | CASE.json`: TMOP mesh optimization with a fixed or sliding boundary.
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -24,7 +23,7 @@ struct OptimizeArgs : detail::MethodArgs {
 };
 
 Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
   const OptimizeRunner runner(detail::with_flags(c ? *c : bare_case(a.input), a), read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
                               OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
@@ -34,7 +33,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   const detail::RunFiles files = detail::run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_optimized");
 
   RunOutput run = runner.run();
-  detail::write_run(run, files, seconds_since(start));
+  detail::write_run(run, files, timings);
 
   const nlohmann::ordered_json& extra = run.extra;
   const std::size_t inverted = runner.initial_inverted();

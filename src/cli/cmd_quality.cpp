@@ -1,5 +1,4 @@
 // SPDX-License-Identifier: MIT
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -85,7 +84,7 @@ void print_table(std::ostream& out, const std::string& file, const Mesh& mesh, c
 Outcome run_quality(const QualityArgs& a, std::ostream& out) {
   if (!a.output.empty() && std::filesystem::path(a.output).extension() != ".vtu")
     throw InputError(a.output + ": -o writes the per-element quality as VTU cell data; expected a .vtu file");
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const Mesh mesh = read_mesh(a.mesh);
   std::vector<detail::OutputFile> outputs;
   if (!a.json.empty()) outputs.push_back({"--json", a.json, false});
@@ -93,12 +92,11 @@ Outcome run_quality(const QualityArgs& a, std::ostream& out) {
   detail::check_outputs(outputs);
   QualityOutput run = run_quality(mesh, a.mesh);
   const QualityReport& q = run.quality;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_table(out, a.mesh, mesh, q);
   out.flush();  // the table before the log lines that follow on stderr
 
   if (!a.json.empty()) {
-    run.report.seconds = seconds;
+    stamp_times(run.report, timings);
     write_report(a.json, run.report, run.extra);
     log_info("wrote " + a.json);
   }

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 // `meshmorph untangle CASE.json | MESH`: simultaneous untangling and smoothing (paper 001).
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -19,7 +18,7 @@ namespace meshmorph {
 namespace detail {
 
 Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimings timings;
   const std::optional<CaseFile> c = case_or_mesh(a.input);
   const CaseFile run_case = with_flags(c ? *c : bare_case(a.input), a);
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
@@ -29,7 +28,7 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {
     if (c && c->output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
   });
-  write_run(run, files, seconds_since(start));
+  write_run(run, files, timings);
 
   const IterationCounts& counts = *run.report.iterations;
   const int steps = run.extra["steps"].get<int>();

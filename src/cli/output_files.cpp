@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
 #include "meshmorph/io/mesh_io.h"
+#include "meshmorph/log.h"
 
 namespace meshmorph::detail {
 
@@ -99,6 +101,7 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
   const int threads = omp_get_max_threads();  // the run's (use_method_threads)
   std::snprintf(line, sizeof line, "time     %.3f s on %d thread%s\n", report.seconds, threads, threads == 1 ? "" : "s");
   out << line;
+  if (report.timings && log_enabled(LogLevel::Detail)) out << timings_line(*report.timings) << "\n";
   return report.converged ? Outcome::GoalReached : Outcome::GoalMissed;
 }
 
@@ -123,11 +126,23 @@ RunFiles run_files(const std::string& output, const std::string& report, const C
   return f;
 }
 
-void write_run(RunOutput& run, const RunFiles& files, double seconds) {
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings) {
   run.report.case_file = files.case_file;
-  run.report.seconds = seconds;
   write_result_mesh(run.report, run.moved, run.quality, files.output);
+  stamp_times(run.report, timings);
   if (files.report) write_report(*files.report, run.report, run.extra);
+}
+
+std::string timings_line(const Timings& timings) {
+  std::string line = "timings ";
+  for (int p = 0; p < k_phases; ++p) {
+    std::string name(phase_key(Phase(p)));
+    std::replace(name.begin(), name.end(), '_', ' ');
+    char part[64];
+    std::snprintf(part, sizeof part, "%s %s %.3f s", p == 0 ? "" : ",", name.c_str(), timings[Phase(p)]);
+    line += part;
+  }
+  return line;
 }
 
 std::string mesh_line(const Mesh& mesh) {

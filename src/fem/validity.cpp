@@ -13,6 +13,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/jacobian.h"
 #include "meshmorph/fem/tensor_basis.h"
+#include "meshmorph/timings.h"
 #include "fem/detail/bezier_validity.h"
 
 namespace meshmorph {
@@ -128,6 +129,7 @@ double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, c
 }
 
 std::size_t count_invalid_cells(const Mesh& mesh) {
+  const PhaseTimer timer(Phase::Validity);
   std::size_t bad = 0;
   for (const auto& b : mesh.cells) {
     const auto n = static_cast<std::int64_t>(b.n_cells());

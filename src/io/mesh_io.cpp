@@ -13,6 +13,7 @@
 #include "meshmorph/io/medit.h"
 #include "meshmorph/io/msh.h"
 #include "meshmorph/io/vtu.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph {
 namespace {
@@ -26,6 +27,7 @@ std::string extension_of(const std::filesystem::path& path) {
 }  // namespace
 
 Mesh read_mesh(const std::filesystem::path& path) {
+  const PhaseTimer timer(Phase::Io);
   const std::string ext = extension_of(path);
   if (ext == ".msh") return read_msh(path);
   if (ext == ".vtu") return read_vtu(path);
@@ -64,6 +66,7 @@ std::optional<std::string> group_name_problem(std::string_view name) {
 }
 
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {
+  const PhaseTimer timer(Phase::Io);
   for (const PhysicalGroup& g : mesh.groups)
     if (const auto bad = group_name_problem(g.name))
       throw InputError(path.string() + ": the name of physical group " + std::to_string(g.tag) + " (dimension " +

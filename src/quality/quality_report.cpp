@@ -15,6 +15,7 @@
 #include "meshmorph/geometry/boundary_crossings.h"
 #include "meshmorph/quality/element_quality.h"
 #include "meshmorph/quality/scaled_jacobian.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph {
 namespace {
@@ -80,6 +81,7 @@ void injectivity(const Mesh& mesh, QualityReport& r) {
 }  // namespace
 
 QualityReport quality_report(const Mesh& current, const Mesh* input) {
+  const PhaseTimer timer(Phase::Validity);
   if (input) check_compatible(current, *input);
   QualityReport r;
   r.n_cells = current.n_cells();

@@ -6,6 +6,7 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/threads.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph::detail {
 namespace {
@@ -31,6 +32,7 @@ CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options, const AmgOptions& a
 CgAmgSolver::CgAmgSolver(const LinearSolverOptions& options) : CgAmgSolver(options, amg_options(options)) {}
 
 bool CgAmgSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  const PhaseTimer timer(Phase::SolverSetup);
   ready_ = false;
   const bool same_pattern = built_ && A.rows() == A_.n && A.nonZeros() == nnz_;
   A_ = view_of(A);
@@ -74,6 +76,7 @@ void CgAmgSolver::set_coarse_space(const Eigen::SparseMatrix<double>& P) {
 
 LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                              Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   if (!ready_ || A.rows() != A_.n || A.nonZeros() != nnz_) {
     LinearSolveStats stats;
     stats.message = "no preconditioner of this pattern to reuse";
@@ -90,6 +93,7 @@ LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& 
 }
 
 LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   const LinearSolveStats stats = cg(b, x, rtol);
   track(stats);
   return stats;

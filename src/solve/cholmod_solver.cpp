@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include "meshmorph/error.h"
+#include "meshmorph/timings.h"
 #include "solve/detail/cholmod_header.h"
 #include "solve/detail/float_factor.h"
 
@@ -120,6 +121,7 @@ int CholmodSolver::n_supernodes() const {
 bool CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A) { return factorize(view_of(A)); }
 
 bool CholmodSolver::factorize(const SparseView& A) {
+  const PhaseTimer timer(Phase::SolverSetup);
   factorized_ = false;
   impl_->single.clear();
   const std::size_t nnz = static_cast<std::size_t>(A.nnz());
@@ -181,6 +183,7 @@ void CholmodSolver::solve(const double* b, double* x) {
 }
 
 LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/) {
+  const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!factorized_) {
     stats.message = "matrix not positive definite";
@@ -196,6 +199,7 @@ LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd&
 
 LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                                Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!(factorized_ && A.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
         A.nonZeros() == static_cast<Eigen::Index>(inner_.size()))) {

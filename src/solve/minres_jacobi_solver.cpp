@@ -10,11 +10,13 @@
 #include <cmath>
 
 #include "meshmorph/threads.h"
+#include "meshmorph/timings.h"
 #include "solve/detail/amg_csr.h"
 
 namespace meshmorph::detail {
 
 bool MinresJacobiSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  const PhaseTimer timer(Phase::SolverSetup);
   A_ = view_of(A);
   inverse_diagonal_.setZero(A_.n);
   ready_ = false;
@@ -29,6 +31,7 @@ bool MinresJacobiSolver::factorize(const Eigen::SparseMatrix<double>& A) {
 }
 
 LinearSolveStats MinresJacobiSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!ready_) {
     stats.message = "no matrix factorized";

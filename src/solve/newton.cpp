@@ -59,7 +59,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
   double& tau_next = m.shift;  // shift to start from: a quarter of the last one that worked
   for (;;) {
     bool exact = options.exact_first && m.exact_ready;
-    problem.evaluate(exact ? HessianMode::Exact : HessianMode::Projected, a);
+    detail::evaluate(problem, exact ? HessianMode::Exact : HessianMode::Projected, a);
     if (detail::ends_at(a, stats)) return stats;
     const double tol = options.decrement_tolerance;
     const double rtol = std::max(options.forcing, options.linear_rtol);
@@ -94,7 +94,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
         exact = false;
         m.exact_ready = false;
         tau_next = 0.0;
-        problem.evaluate(HessianMode::Projected, a);
+        detail::evaluate(problem, HessianMode::Projected, a);
       }
     }
     if (!exact && !reused &&

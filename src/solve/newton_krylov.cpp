@@ -91,6 +91,7 @@ class TwoLevel {
 // (Steihaug): p is then the last iterate, a descent direction for −b, or none (iterations 0).
 CgResult truncated_cg(MatrixFreeNewtonProblem& problem, const TwoLevel& preconditioner, const Eigen::VectorXd& b,
                       double rtol, int max_iterations, Eigen::VectorXd& p) {
+  const PhaseTimer timer(Phase::Solve);
   CgResult result;
   p.setZero(b.size());
   Eigen::VectorXd r = b, z, s, Hs(b.size());
@@ -132,6 +133,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
   std::unique_ptr<LinearSolver> coarse_solver;  // its symbolic analysis kept between steps
   // The preconditioner of the last evaluate_action()'s Hessian.
   const auto preconditioner = [&] {
+    const PhaseTimer timer(Phase::SolverSetup);
     TwoLevel M(problem.hessian_blocks());
     if (krylov.two_level && problem.coarse_hessian(coarse) && coarse.A.rows() > 0) {
       if (!coarse_solver) {
@@ -145,11 +147,15 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
     }
     return M;
   };
+  const auto evaluate_action = [&](HessianMode mode) {
+    const PhaseTimer timer(Phase::Assembly);
+    problem.evaluate_action(mode, a);
+  };
   bool exact_ready = false;
   double forcing = krylov.max_forcing, previous_norm = 0.0;
   for (;;) {
     bool exact = options.exact_first && exact_ready;
-    problem.evaluate_action(exact ? HessianMode::Exact : HessianMode::Projected, a);
+    evaluate_action(exact ? HessianMode::Exact : HessianMode::Projected);
     if (detail::ends_at(a, stats)) return stats;
     const double norm = a.gradient.norm();
     if (previous_norm > 0.0) {
@@ -168,7 +174,7 @@ NewtonStats newton_matrix_free(MatrixFreeNewtonProblem& problem, const NewtonOpt
       // after seven trials through inverted cells). Projected steps until one is taken in full.
       log_detail("newton: the exact Hessian is not positive definite on the Krylov space; projected steps");
       exact = exact_ready = false;
-      problem.evaluate_action(HessianMode::Projected, a);
+      evaluate_action(HessianMode::Projected);
       cg = truncated_cg(problem, preconditioner(), -a.gradient, forcing, krylov.max_iterations, p);
       ++stats.linear_solves;
       stats.krylov_iterations += cg.iterations;

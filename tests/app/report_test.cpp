@@ -32,6 +32,7 @@ Report sample_report() {
   r.boundary_error_l2 = 1e-9;
   r.iterations = IterationCounts{6, 8, 16, 16};
   r.seconds = 1.23;
+  r.timings = Timings{{0.41, 0.05, 0.08, 0.21, 0.36, 0.04, 0.08}};
   r.converged = true;
   r.message = "converged: constraint norm 3e-9 < 1e-8";
   r.history = {{{"outer", 1}, {"constraint_norm", 0.8}, {"min_quality", 0.41}, {"mu", 10.0}},
@@ -47,12 +48,16 @@ TEST(Report, WritesTheDocumentedKeysInOrder) {
       "meshmorph_version", "method", "case", "dim", "order", "nodes", "elements", "valid", "inverted_elements",
       "flipped_elements", "boundary_crossings", "cell_volume", "enclosed_volume", "min_quality", "mean_quality", "min_shape_quality", "min_scaled_jacobian", "boundary_error_max",
       "boundary_error_l2", "fit_error_max", "iterations", "seconds", "peak_memory_mb", "converged", "message",
-      "history"};
+      "history", "timings"};
   EXPECT_EQ(keys, expected);
   EXPECT_TRUE(j["fit_error_max"].is_null());
   EXPECT_EQ(j["iterations"]["newton"], 16);
   EXPECT_EQ(j["history"][1]["mu"], 100.0);
   EXPECT_EQ(j["history"][0].begin().key(), "outer");
+  std::vector<std::string> phases;
+  for (const auto& item : j["timings"].items()) phases.push_back(item.key());
+  EXPECT_EQ(phases, (std::vector<std::string>{"assembly", "validity", "line_search", "solver_setup", "solve", "io", "other"}));
+  EXPECT_EQ(j["timings"]["solver_setup"], 0.21);
 }
 
 TEST(Report, NotApplicableAndNonFiniteValuesAreNull) {
@@ -84,14 +89,17 @@ TEST(Report, RoundTripsThroughAFile) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
 }
 
-// Reports written before the injectivity keys existed read back, with 0 flipped cells.
+// Reports written before the injectivity keys and timings existed read back, with 0 flipped
+// cells and no timings.
 TEST(Report, ReadsReportsWithoutTheInjectivityKeys) {
   auto j = report_to_json(sample_report());
   j.erase("flipped_elements");
   j.erase("boundary_crossings");
   j.erase("cell_volume");
   j.erase("enclosed_volume");
+  j.erase("timings");
   const Report r = report_from_json(j, "r.json");
+  EXPECT_FALSE(r.timings);
   EXPECT_EQ(r.flipped_elements, 0u);
   EXPECT_EQ(r.boundary_crossings, 0u);
   EXPECT_FALSE(r.cell_volume);

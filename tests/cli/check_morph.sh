@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # check_morph.sh MESHMORPH EXAMPLES WORK: `morph` end to end on the annulus example — a
-# converged run writes a valid mesh and its report, the same on one thread as on all cores;
+# converged run writes a valid mesh and its report (timings included; --verbose prints them),
+# the same on one thread as on all cores;
 # bad motions, a step file that would replace an input, two outputs on one file and outputs
 # that cannot be written exit 2 and write nothing; a run out of budget and a baseline that
 # inverts elements exit 1 and write no mesh.
@@ -37,6 +38,16 @@ grep -q "on $cores thread" "$work/ok.out" || fail "ok: not on the $cores cores: 
   fail "ok1: exit $?: $(cat "$work/ok1.out")"
 grep -q "on 1 thread$" "$work/ok1.out" || fail "ok1: --threads 1 not used: $(cat "$work/ok1.out")"
 cmp -s "$work/ok.vtu" "$work/ok1.vtu" || fail "ok1: one thread wrote another mesh than $cores"
+# The report's seconds by phase; --verbose prints them after the time line.
+grep -q '"timings": {' "$work/ok.json" || fail "ok: no timings in the report"
+for phase in assembly validity line_search solver_setup solve io other; do
+  grep -q "^    \"$phase\": [0-9]" "$work/ok.json" || fail "ok: no timings.$phase in the report"
+done
+"$mm" --verbose morph "$work/ok.case.json" -o "$work/okv.vtu" --report "$work/okv.json" > "$work/okv.out" 2> /dev/null ||
+  fail "okv: exit $?"
+grep -q "^timings  assembly [0-9.]* s, validity [0-9.]* s, line search [0-9.]* s, solver setup [0-9.]* s, solve [0-9.]* s, io [0-9.]* s, other [0-9.]* s$" "$work/okv.out" ||
+  fail "okv: no timings line: $(cat "$work/okv.out")"
+grep -q "^timings" "$work/ok.out" && fail "ok: a timings line without --verbose"
 
 make_case unknown_group '[{"group": "rotor", "translate": [1, 0]}]'
 expect unknown_group 2 "rotor"

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "meshmorph/timings.h"
+
 namespace meshmorph {
 
 /// Iteration counts of a method run (DESIGN §3.3 "iterations").
@@ -56,6 +58,9 @@ struct Report {
   bool converged = false;
   std::string message;
   std::vector<HistoryRow> history;
+  /// Seconds per phase (JSON "timings", after "history"); reports written without them read
+  /// back as none.
+  std::optional<Timings> timings;
 
   bool operator==(const Report&) const = default;
 };

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <chrono>
 #include <functional>
 
 #include <nlohmann/json.hpp>
@@ -8,13 +7,14 @@
 #include "meshmorph/app/report.h"
 #include "meshmorph/mesh/mesh.h"
 #include "meshmorph/quality/quality_report.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph {
 
 /// What a case runner returns (DESIGN §1, app): the report of DESIGN §3.3, the members that
 /// follow its "history" (the method's own figures, docs/<method>.md, Report), the moved mesh
 /// and its per-cell quality. The command line writes them, the Python module returns them.
-/// report.case_file, report.seconds and report.peak_memory_mb are the caller's to fill.
+/// report.case_file, report.seconds, report.timings and report.peak_memory_mb are the caller's to fill.
 struct RunOutput {
   Report report;
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();
@@ -30,7 +30,8 @@ struct RunOutput {
 /// mesh; the command line writes the step files of `output_each_step` there.
 using StepSink = std::function<void(int step, const Mesh& mesh)>;
 
-/// The seconds since `start` (std::chrono::steady_clock), for report.seconds.
-double seconds_since(std::chrono::steady_clock::time_point start);
+/// Fills report.seconds (the run's seconds so far) and report.timings (those seconds by phase)
+/// from the run's clock.
+void stamp_times(Report& report, const RunTimings& timings);
 
 }  // namespace meshmorph

@@ -67,9 +67,12 @@ struct RunFiles {
 RunFiles run_files(const std::string& output, const std::string& report, const CaseFile* c, const std::string& input,
                    const std::string& suffix = "");
 
-/// Writes a run's mesh (write_result_mesh) and report (write_report, with `case` and
-/// `seconds` filled) where `files` ask for them.
-void write_run(RunOutput& run, const RunFiles& files, double seconds);
+/// Writes a run's mesh (write_result_mesh) and report (write_report, with `case`, `seconds`
+/// and `timings` filled, the mesh's writing included) where `files` ask for them.
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings);
+
+/// "timings  assembly 0.41 s, validity 0.05 s, ...": the seconds by phase, for --verbose.
+std::string timings_line(const Timings& timings);
 
 /// "mesh     2D, 1265 nodes, 2304 cells, order 1": the line every method's summary starts with.
 std::string mesh_line(const Mesh& mesh);

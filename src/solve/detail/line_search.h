@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/solve/newton.h"
+#include "meshmorph/timings.h"
 
 namespace meshmorph::detail {
 
@@ -17,15 +18,26 @@ struct LineSearch {
 
 inline LineSearch line_search(NewtonProblem& problem, double value, const Eigen::VectorXd& g, const Eigen::VectorXd& p,
                               const NewtonOptions& options) {
+  const PhaseTimer timer(Phase::LineSearch);
   LineSearch s;
+  const auto admissible = [&] {
+    const PhaseTimer validity(Phase::Validity);
+    return problem.admissible(p, s.alpha);
+  };
   const double slope = g.dot(p);
   s.value = problem.trial_value(p, s.alpha);
-  while (!(std::isfinite(s.value) && s.value <= value + options.armijo * s.alpha * slope && problem.admissible(p, s.alpha))) {
+  while (!(std::isfinite(s.value) && s.value <= value + options.armijo * s.alpha * slope && admissible())) {
     s.alpha *= options.backtrack;
     if (s.alpha < options.min_step) break;
     s.value = problem.trial_value(p, s.alpha);
   }
   return s;
+}
+
+/// problem.evaluate(mode, a), timed as assembly.
+inline void evaluate(NewtonProblem& problem, HessianMode mode, Assembly& a) {
+  const PhaseTimer timer(Phase::Assembly);
+  problem.evaluate(mode, a);
 }
 
 /// The checks at the top of every Newton iteration, after the evaluation `a`: true (with
