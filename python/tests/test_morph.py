@@ -17,6 +17,7 @@ import meshmorph
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ANNULUS = ROOT / "examples" / "meshes" / "annulus.msh"
 SPHERE = ROOT / "examples" / "meshes" / "sphere_in_box.msh"
+FOLDED = ROOT / "tests" / "data" / "folded"
 ROTATE = [{"group": "inner", "rotate": {"center": [0, 0], "degrees": 60}}, {"group": "outer", "fixed": True}]
 
 
@@ -102,6 +103,34 @@ class MorpherTest(unittest.TestCase):
         moved = self.annulus.copy()
         moved.points = r["points"]
         self.assertTrue(meshmorph.quality(moved)["valid"])
+
+    def morph_folder(self, name):
+        folder = FOLDED / name
+        case = json.loads((folder / "case.json").read_text())
+        boundary = [dict(e, displace={"file": str(folder / e["displace"]["file"])}) if "displace" in e else e
+                    for e in case["boundary"]]
+        mesh = meshmorph.read_mesh(str(folder / case["mesh"]))
+        report, moved = meshmorph.morph(mesh, boundary, threads=1)
+        return mesh, report, moved
+
+    def test_an_untangle_pass_that_leaves_cells_inverted_between_samples_is_not_taken(self):
+        # A smooth motion of both boundaries of a P2 square with a square hole: the augmented
+        # Lagrangian stalls, and the untangle pass from there ends with cells that pass its
+        # samples but not the Bernstein bounds. The stalled, valid iterate is the result.
+        _, report, moved = self.morph_folder("untangle_pass")
+        self.assertFalse(report["converged"])
+        self.assertIn("the untangle pass left", report["message"])
+        self.assertTrue(report["valid"])
+        self.assertTrue(meshmorph.quality(moved)["valid"])
+
+    def test_a_result_whose_boundary_passes_through_itself_gives_back_the_start(self):
+        # Every cell positive at the targets, but the hole's top edge below its bottom edge.
+        mesh, report, moved = self.morph_folder("crossing")
+        self.assertFalse(report["converged"])
+        self.assertIn("boundary passes through itself", report["message"])
+        self.assertIn("the mesh returned is the one that solve started from", report["message"])
+        self.assertTrue(report["valid"])
+        self.assertTrue(np.array_equal(moved.points, mesh.points))
 
     def test_order_elevation_curves_nothing_on_a_rotation_of_everything(self):
         boundary = [{"group": g, "rotate": {"center": [0, 0], "degrees": 90}} for g in ("inner", "outer")]

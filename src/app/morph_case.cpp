@@ -20,6 +20,7 @@ MorphSettings read_morph_settings(const CaseFile& c, int threads) {
   r.read("penalty0", m.penalty0, 1e-12, 1e12);
   r.read("m0", m.m0, 1.0 + 1e-12, 1e12);
   r.read("m_factor", m.m_factor, 1.0 + 1e-12, 1e12);
+  r.read("min_decrease", m.min_decrease, 0.0, 1.0);
   r.read("weights", weights, {"adaptive", "constant"});
   m.adaptive_weights = weights == "adaptive";
   r.read("alpha", m.alpha, 0.0, 100.0);

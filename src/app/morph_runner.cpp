@@ -85,12 +85,27 @@ MorphOutput MorphRunner::finish(MorphOutput out, const Progress& p, const Bounda
   return out;
 }
 
+// The augmented Lagrangian hands back valid meshes only: a result that fails the report's
+// checks (cells inverted between the samples that the method judged them at, a boundary
+// that passes through itself) is replaced by the mesh its solve started from.
+MorphOutput MorphRunner::keep_valid(MorphOutput out, const Eigen::MatrixXd& before, const Progress& p,
+                                    const BoundaryTargets& bc) {
+  if (!morpher_ || out.report.valid) return out;
+  const std::string why = out.report.message;
+  x_ = before;
+  out = finish(std::move(out), p, bc);
+  out.report.message = why + "; the mesh returned is the one that solve started from";
+  return out;
+}
+
 MorphOutput MorphRunner::run(const StepSink& on_step) {
   MorphOutput out;
   Progress p;
   out.report.converged = true;
+  Eigen::MatrixXd before = x_;
   for (int s = 1; s <= steps_; ++s) {
     ++solves_;
+    before = x_;
     if (!advance(motion_->at(static_cast<double>(s) / steps_), s, steps_ > 1, p, out)) {
       out.report.converged = false;
       break;
@@ -107,15 +122,17 @@ MorphOutput MorphRunner::run(const StepSink& on_step) {
       }
     if (on_step) on_step(s, mesh);
   }
-  return finish(std::move(out), p, motion_->targets());
+  return keep_valid(finish(std::move(out), p, motion_->targets()), before, p, motion_->targets());
 }
 
 MorphOutput MorphRunner::solve(const Eigen::MatrixXd& target) {
   MorphOutput out;
   Progress p;
+  const Eigen::MatrixXd before = x_;
   out.report.converged = advance(target, ++solves_, false, p, out);
   // The boundary error against this solve's targets, not the case's motion at its end.
-  return finish(std::move(out), p, detail::with_targets(motion_->targets(), target));
+  const BoundaryTargets bc = detail::with_targets(motion_->targets(), target);
+  return keep_valid(finish(std::move(out), p, bc), before, p, bc);
 }
 
 }  // namespace meshmorph

@@ -74,7 +74,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
       stats.krylov_iterations += s.iterations;
       if (s.ok) {
         const double estimate = -0.5 * a.gradient.dot(p);
-        if (estimate >= 0.0 && estimate <= tol) {
+        if (estimate >= 0.0 && estimate <= tol && stats.iterations >= options.min_iterations) {
           stats.decrement = estimate;
           stats.converged = true;
           return stats;
@@ -111,7 +111,7 @@ NewtonStats newton(NewtonProblem& problem, LinearSolver& solver, const NewtonOpt
     const double ratio = stats.iterations > 0 && previous_decrement > 0.0 ? stats.decrement / previous_decrement : 1.0;
     const double predicted = stats.decrement * std::min(1.0, ratio * ratio);
     m.reusable = tau <= 1e-2 && (solver.cheap_previous() || predicted <= tol);
-    if (stats.decrement <= tol) {
+    if (stats.decrement <= tol && stats.iterations >= options.min_iterations) {
       stats.converged = true;
       return stats;
     }

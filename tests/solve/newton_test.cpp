@@ -162,6 +162,37 @@ TEST(Newton, StepsAndConfirmsConvergenceWithThePreviousFactorization) {
   EXPECT_LT(q.gradient().norm(), 1e-9);
 }
 
+// A problem changed by less than the decrement test sees (its minimiser shifted by ~5e-7)
+// takes no step by default; min_iterations = 1 takes the step that answers the change, and
+// that Newton step lands on the new minimiser.
+TEST(Newton, MinIterationsTakesTheStepBelowTheTest) {
+  Eigen::VectorXd x0(3), c(3);
+  x0 << 1.2, -0.9, 1.05;
+  c = x0;
+  Quartic solved(x0, 2.0, c, -10.0);
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-24;  // to the energy's resolution
+  ASSERT_TRUE(newton(solved, solver, o).converged);
+  const Eigen::VectorXd minimiser = solved.x;
+  Eigen::VectorXd nudged = c;
+  nudged[1] += 1e-6;  // a gradient of 2e-6: a decrement of ~5e-13
+  o.decrement_tolerance = 1e-12;
+  for (int min_iterations : {0, 1}) {
+    Quartic q(minimiser, 2.0, nudged, -10.0);
+    o.min_iterations = min_iterations;
+    const NewtonStats s = newton(q, solver, o);
+    ASSERT_TRUE(s.converged) << s.message;
+    EXPECT_EQ(s.iterations, min_iterations);
+    if (min_iterations == 0) {
+      EXPECT_EQ(q.x, minimiser);
+      EXPECT_GT(q.gradient().norm(), 1e-6);
+    } else {
+      EXPECT_LT(q.gradient().norm(), 1e-10);
+    }
+  }
+}
+
 TEST(Newton, SolvesOnWhenAnInexactStepIsCutShort) {
   // Loose solves return 30 times the Newton step: Armijo cuts it to α = 1/16 and, taken as
   // it is, Newton would converge linearly (error ×0.875 per step). Solved on to linear_rtol,

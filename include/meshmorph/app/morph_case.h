@@ -62,7 +62,9 @@ class MorphRunner {
 
   /// The case's run: `steps` solves along the motion, each from where the last ended, and
   /// `on_step` after each but the last (docs/morph.md, Time series; the baselines solve once
-  /// per increment on the mesh the last one left and stop at one that inverts a cell).
+  /// per increment on the mesh the last one left and stop at one that inverts a cell). A
+  /// morph whose result fails the checks of the report (inverted between the samples, or
+  /// overlapping) ends on the mesh its last solve started from, which passed them.
   MorphOutput run(const StepSink& on_step = {});
 
   /// One solve towards `target` (d × n: positions of the prescribed nodes) from where the
@@ -75,6 +77,7 @@ class MorphRunner {
   struct Progress;
   bool advance(const Eigen::MatrixXd& target, int step, bool label, Progress& p, MorphOutput& out);
   MorphOutput finish(MorphOutput out, const Progress& p, const BoundaryTargets& bc) const;
+  MorphOutput keep_valid(MorphOutput out, const Eigen::MatrixXd& before, const Progress& p, const BoundaryTargets& bc);
 
   std::string where_;
   MorphSettings settings_;

@@ -32,6 +32,11 @@ struct MorphOptions {
   double penalty0 = 10.0;
   double m0 = 10.0;        ///< m₀ of Algorithm 1
   double m_factor = 100.0; ///< m ← m_factor·m when the constraint did not decrease enough
+  /// After a multiplier update that leaves the boundary short of its targets, m grows by
+  /// m_factor too unless c fell below min_decrease times its previous value: 0 (the default)
+  /// raises μ after every such iteration, 1 only where c did not decrease (about Algorithm 1
+  /// as printed). docs/morph.md, "Raising μ after multiplier updates".
+  double min_decrease = 0.0;
   bool adaptive_weights = true;  ///< Algorithm 2; false keeps ω = 1 (paper §4.2 comparison)
   double alpha = 3.0;      ///< eq. 10
   double beta = 1.25;      ///< eq. 11

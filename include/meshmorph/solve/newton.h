@@ -66,6 +66,10 @@ struct NewtonOptions {
   /// residual in the norm of the Newton system) is ≤ this, in the energy's units.
   double decrement_tolerance = 1e-12;
   int max_iterations = 100;
+  /// Steps taken before the decrement test may end the iteration: a caller whose change of
+  /// the problem is below the test (morph's multiplier update near the boundary) still gets
+  /// the step that answers it.
+  int min_iterations = 0;
   double armijo = 1e-4;      ///< c of the Armijo rule (paper 000: 1e-4)
   double backtrack = 0.5;    ///< step reduction per rejected trial
   double min_step = 1e-12;   ///< smallest α tried before giving up
