@@ -89,11 +89,7 @@ TEST(PetscSolver, NamesItsKind) {
 // Newton's matrices change from step to step with the same pattern, once with a penalty-like
 // jump of a few rows by 1e6; then the pattern changes. Every solve reaches the tolerance.
 TEST(PetscSolver, RefactorizesChangedValuesAndPatterns) {
-  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 8, true, 1.0, 1.0);
-  Eigen::SparseMatrix<double> B = A;
-  for (Eigen::Index i = 0; i < 30; ++i) B.coeffRef(i, i) *= 1.0 + 0.1 * static_cast<double>(i % 3);
-  Eigen::SparseMatrix<double> C = B;
-  for (Eigen::Index i = 0; i < 24; ++i) C.coeffRef(i, i) *= 1e6;
+  const auto [A, B, C] = test::newton_matrices();
   const Eigen::SparseMatrix<double> D = test::energy_hessian<3>(1, 9);  // another pattern
   for (const LinearSolverKind kind : k_petsc_kinds) {
     auto solver = make_linear_solver(petsc_options(kind, 8), static_cast<std::size_t>(A.rows()));

@@ -18,7 +18,7 @@ enum class LinearSolverKind {
   /// MINRES preconditioned by the diagonal (paper 003's solver): a baseline to compare
   /// against, never chosen by Auto
   MinresJacobi,
-  /// PETSc: conjugate gradients preconditioned by smoothed aggregation (GAMG), with the rigid
+  /// PETSc: conjugate gradients preconditioned by aggregation multigrid (GAMG), with the rigid
   /// body modes of the options' coordinates as near-null space; never chosen by Auto
   PetscGamg,
   /// PETSc: conjugate gradients preconditioned by hypre's BoomerAMG with nodal coarsening of

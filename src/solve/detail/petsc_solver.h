@@ -8,7 +8,7 @@
 namespace meshmorph::detail {
 
 /// Conjugate gradients in PETSc's KSP with an algebraic multigrid preconditioner:
-/// smoothed aggregation (PCGAMG, "petsc-gamg") with the rigid-body modes of the options'
+/// aggregation (PCGAMG, "petsc-gamg") with the rigid-body modes of the options'
 /// coordinates as near-null space (the block_size constant vectors without them), or hypre's
 /// BoomerAMG with nodal coarsening of the block_size unknowns of a node ("petsc-hypre").
 /// The matrix is copied into PETSc (A need not outlive factorize()); its copy is rebuilt only
