@@ -22,7 +22,8 @@ enum class LinearSolverKind {
   /// body modes of the options' coordinates as near-null space; never chosen by Auto
   PetscGamg,
   /// PETSc: conjugate gradients preconditioned by hypre's BoomerAMG with nodal coarsening of
-  /// each node's block_size unknowns; never chosen by Auto
+  /// each node's block_size unknowns; never chosen by Auto. PETSc is not thread-safe: the
+  /// PETSc solvers of a process are made and used by one thread at a time.
   PetscHypre,
 };
 
