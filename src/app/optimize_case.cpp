@@ -54,7 +54,7 @@ OptimizeSettings read_optimize_settings(const CaseFile& c, const OptimizeFlags& 
   r.read("rtol", o.rtol, 0.0, 1.0);
   r.read("growth", o.growth, 1.0, 1e6);
   r.read("det_floor", o.det_floor, 0.0, 1.0);
-  r.read("solver", solver, {"auto", "cholesky", "iterative", "matrix-free"});
+  r.read("solver", solver, {"auto", "cholesky", "iterative", "matrix-free", "petsc-gamg", "petsc-hypre"});
   r.finish();
   if (!flags.metric.empty()) o.metric = flags.metric;
   if (!flags.target.empty()) target = flags.target;
@@ -64,6 +64,8 @@ OptimizeSettings read_optimize_settings(const CaseFile& c, const OptimizeFlags& 
   o.solver = solver == "cholesky"      ? OptimizeSolver::Cholesky
              : solver == "iterative"   ? OptimizeSolver::Iterative
              : solver == "matrix-free" ? OptimizeSolver::MatrixFree
+             : solver == "petsc-gamg"  ? OptimizeSolver::PetscGamg
+             : solver == "petsc-hypre" ? OptimizeSolver::PetscHypre
                                        : OptimizeSolver::Auto;
   o.threads = threads;
   if (!o.metric.empty()) {

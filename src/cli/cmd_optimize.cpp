@@ -72,8 +72,8 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
   cmd->add_option("--boundary", args->boundary,
                   "fixed (default) | slide (on the boundary's own planes and curved facets) | slide-planes (on its planes only)")
       ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
-  cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free")
-      ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free"}));
+  cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free | petsc-gamg | petsc-hypre")
+      ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free", "petsc-gamg", "petsc-hypre"}));
 }
 
 }  // namespace meshmorph

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -82,6 +83,7 @@ BaselineResult solve_constrained(const Mesh& mesh, const BoundaryTargets& bc, co
   const auto n_dofs = static_cast<Eigen::Index>(d) * static_cast<Eigen::Index>(n_nodes);
   Eigen::VectorXd u_bc = Eigen::VectorXd::Zero(n_dofs);
   std::vector<Eigen::Triplet<double, int>> p_entries;
+  std::vector<double> coordinates;  // of the Free nodes' unknowns, for PETSc's GAMG
   int m = 0;  // unknowns
   for (std::size_t j = 0; j < n_nodes; ++j) {
     const auto row = static_cast<int>(j) * d;
@@ -92,7 +94,10 @@ BaselineResult solve_constrained(const Mesh& mesh, const BoundaryTargets& bc, co
       case NodeRole::Fixed: break;
       case NodeRole::Free:
         if (!in_cell[j]) break;  // no equation: the node stays where it is
-        for (int k = 0; k < d; ++k) p_entries.emplace_back(row + k, m++, 1.0);
+        for (int k = 0; k < d; ++k) {
+          p_entries.emplace_back(row + k, m++, 1.0);
+          coordinates.push_back(mesh.x(k, static_cast<Eigen::Index>(j)));
+        }
         break;
       case NodeRole::Slide: {
         if (!in_cell[j]) break;
@@ -140,6 +145,7 @@ BaselineResult solve_constrained(const Mesh& mesh, const BoundaryTargets& bc, co
   // Slide nodes carry d − 1 unknowns, which breaks the d-per-node blocks of the iterative backend.
   lo.block_size = any_slide ? 1 : d;
   lo.threads = options.threads;
+  if (!any_slide) lo.coordinates = std::move(coordinates);
   auto solver = make_linear_solver(lo, static_cast<std::size_t>(m));
   if (!solver->factorize(A)) throw InputError(singular_message(method));
   Eigen::VectorXd y;

@@ -9,6 +9,7 @@
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/fit_problem.h"
 #include "methods/detail/format.h"
+#include "methods/detail/newton_solver.h"
 
 namespace meshmorph {
 namespace {
@@ -95,10 +96,14 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
       // loaded 2-core machine): CHOLMOD 47 s and 1.0 GB for the run, CG-AMG 625 s and 2.3 GB,
       // 83% of it in the Galerkin products of the smoothed prolongator, whose A·P has the
       // pattern of A² on high-order Hessians: assembled Hessians take CHOLMOD unless asked.
-      lo.kind = kind == OptimizeSolver::Iterative ? LinearSolverKind::Iterative : LinearSolverKind::Cholesky;
+      lo.kind = kind == OptimizeSolver::Iterative    ? LinearSolverKind::Iterative
+                : kind == OptimizeSolver::PetscGamg  ? LinearSolverKind::PetscGamg
+                : kind == OptimizeSolver::PetscHypre ? LinearSolverKind::PetscHypre
+                                                     : LinearSolverKind::Cholesky;
       lo.block_size = d;
       lo.dim = d;
       lo.threads = fo.threads;
+      lo.coordinates = detail::free_node_coordinates<d>(mesh, P.dofs());
       const std::unique_ptr<LinearSolver> solver = make_linear_solver(lo, P.n_free());
       result.solver = solver->name();
       s = newton(P, *solver, no, nullptr);

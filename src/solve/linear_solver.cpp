@@ -4,6 +4,7 @@
 #include "solve/detail/cg_amg_solver.h"
 #include "solve/detail/cholmod_solver.h"
 #include "solve/detail/minres_jacobi_solver.h"
+#include "solve/detail/petsc_solver.h"
 
 namespace meshmorph {
 
@@ -39,6 +40,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& opti
   switch (resolve_linear_solver(options.kind, options.dim, n, options.cell_nodes)) {
     case LinearSolverKind::Iterative: return std::make_unique<detail::CgAmgSolver>(options);
     case LinearSolverKind::MinresJacobi: return std::make_unique<detail::MinresJacobiSolver>(options);
+    case LinearSolverKind::PetscGamg:
+    case LinearSolverKind::PetscHypre: return std::make_unique<detail::PetscSolver>(options);
     default: return std::make_unique<detail::CholmodSolver>();
   }
 }

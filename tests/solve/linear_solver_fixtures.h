@@ -76,6 +76,21 @@ Eigen::SparseMatrix<double> energy_hessian(int order, int n) {
   return out.hessian;
 }
 
+/// Matrices of one pattern as Newton steps give them: 3D elasticity A; B, A with 30 diagonal
+/// entries changed by up to 20%; C, B with 24 rows' diagonal raised by 1e6 (a penalty's jump).
+struct NewtonMatrices {
+  Eigen::SparseMatrix<double> A, B, C;
+};
+inline NewtonMatrices newton_matrices() {
+  NewtonMatrices m;
+  m.A = stiffness_matrix(3, 8, true, 1.0, 1.0);
+  m.B = m.A;
+  for (Eigen::Index i = 0; i < 30; ++i) m.B.coeffRef(i, i) *= 1.0 + 0.1 * static_cast<double>(i % 3);
+  m.C = m.B;
+  for (Eigen::Index i = 0; i < 24; ++i) m.C.coeffRef(i, i) *= 1e6;
+  return m;
+}
+
 /// A right-hand side with entries uniform in [−1, 1] (fixed seed).
 inline Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed = 3) {
   std::mt19937 rng(seed);

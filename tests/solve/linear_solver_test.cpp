@@ -117,11 +117,7 @@ TEST(LinearSolver, IterativeSolvesStayAccurateWhenTheHierarchyIsReused) {
   // Newton's matrices change from step to step with the same pattern: the solver keeps the
   // coarse levels and must still reach the tolerance, also for a penalty-like jump of a few
   // rows by 1e6 (which makes it rebuild once CG slows down).
-  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 8, true, 1.0, 1.0);
-  Eigen::SparseMatrix<double> B = A;
-  for (Eigen::Index i = 0; i < 30; ++i) B.coeffRef(i, i) *= 1.0 + 0.1 * static_cast<double>(i % 3);
-  Eigen::SparseMatrix<double> C = B;
-  for (Eigen::Index i = 0; i < 24; ++i) C.coeffRef(i, i) *= 1e6;
+  const auto [A, B, C] = test::newton_matrices();
   auto solver = multilevel_solver(3);
   const Eigen::VectorXd b = test::random_vector(A.rows());
   for (const Eigen::SparseMatrix<double>* M : std::vector<const Eigen::SparseMatrix<double>*>{&A, &B, &C, &C, &A}) {

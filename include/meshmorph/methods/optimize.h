@@ -21,6 +21,8 @@ enum class OptimizeSolver {
   Auto,
   Cholesky,    ///< the assembled Hessian factored by CHOLMOD
   Iterative,   ///< the assembled Hessian, CG with smoothed-aggregation AMG
+  PetscGamg,   ///< the assembled Hessian, PETSc's CG with GAMG (LinearSolverKind::PetscGamg)
+  PetscHypre,  ///< the assembled Hessian, PETSc's CG with hypre BoomerAMG
   /// No matrix: the Hessian's action per quadrature point, CG preconditioned by its node
   /// blocks to an Eisenstat–Walker tolerance (newton_matrix_free; MFEM's partial assembly).
   MatrixFree,

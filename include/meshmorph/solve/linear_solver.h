@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -17,6 +18,13 @@ enum class LinearSolverKind {
   /// MINRES preconditioned by the diagonal (paper 003's solver): a baseline to compare
   /// against, never chosen by Auto
   MinresJacobi,
+  /// PETSc: conjugate gradients preconditioned by aggregation multigrid (GAMG), with the rigid
+  /// body modes of the options' coordinates as near-null space; never chosen by Auto
+  PetscGamg,
+  /// PETSc: conjugate gradients preconditioned by hypre's BoomerAMG with nodal coarsening of
+  /// each node's block_size unknowns; never chosen by Auto. PETSc is not thread-safe: the
+  /// PETSc solvers of a process are made and used by one thread at a time.
+  PetscHypre,
 };
 
 struct LinearSolverOptions {
@@ -33,6 +41,10 @@ struct LinearSolverOptions {
   double rtol = 1e-9;
   int max_iterations = 2000;
   int threads = 0;  ///< OpenMP threads; 0 = the OpenMP default
+  /// Where the unknowns' nodes are: block_size coordinates per block of block_size unknowns
+  /// (n values in all), for PetscGamg's rigid-body near-null space. Empty, or of another
+  /// size: the block_size constant vectors instead. The other backends ignore it.
+  std::vector<double> coordinates;
 };
 
 /// What one solve did.
@@ -81,7 +93,7 @@ class LinearSolver {
   /// Whether solve_previous() costs little next to factorize() (a few preconditioned
   /// iterations with a direct factor, not a multigrid-preconditioned Krylov solve).
   virtual bool cheap_previous() const { return false; }
-  /// "cholmod", "cg-amg" or "minres-jacobi".
+  /// "cholmod", "cg-amg", "minres-jacobi", "petsc-gamg" or "petsc-hypre".
   virtual std::string name() const = 0;
 };
 
