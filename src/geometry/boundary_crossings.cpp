@@ -63,8 +63,13 @@ double orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   return (b - a).cross(c - a).dot(d - a);
 }
 
-bool segments_cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
-  return orient2d(a, b, c) * orient2d(a, b, d) < 0.0 && orient2d(c, d, a) * orient2d(c, d, b) < 0.0;
+// Pieces that lie on one line or in one plane up to `tol` (a flat facet's pieces, whose
+// elevated nodes sit off it by rounding, and its flat neighbours') do not cross.
+bool segments_cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                    double tol) {
+  const double oc = orient2d(a, b, c), od = orient2d(a, b, d);
+  if (std::abs(oc) <= tol && std::abs(od) <= tol) return false;
+  return oc * od < 0.0 && orient2d(c, d, a) * orient2d(c, d, b) < 0.0;
 }
 
 // Segment pq through the inside of triangle abc, from one side to the other.
@@ -77,7 +82,10 @@ bool pierces(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Ve
 
 // Two triangles in general position that cross meet along a segment whose ends are where an
 // edge of one pierces the other.
-bool triangles_cross(const std::array<Eigen::Vector3d, 3>& s, const std::array<Eigen::Vector3d, 3>& t) {
+bool triangles_cross(const std::array<Eigen::Vector3d, 3>& s, const std::array<Eigen::Vector3d, 3>& t, double tol) {
+  double off = 0.0;
+  for (const auto& x : t) off = std::max(off, std::abs(orient3d(s[0], s[1], s[2], x)));
+  if (off <= tol) return false;
   for (int e = 0; e < 3; ++e) {
     if (pierces(s[e], s[(e + 1) % 3], t[0], t[1], t[2])) return true;
     if (pierces(t[e], t[(e + 1) % 3], s[0], s[1], s[2])) return true;
@@ -137,11 +145,16 @@ BoundaryCrossings boundary_crossings(const Mesh& mesh, const Topology& topology)
     tree.overlapping(lo.col(i), hi.col(i), [&](int j) {
       if (j <= i || (lo.col(j).array() > hi.col(i).array()).any() || (hi.col(j).array() < lo.col(i).array()).any()) return;
       const Piece& q = pieces[static_cast<std::size_t>(j)];
-      if (shares_node(p, q)) return;
+      // Pieces of one facet cross only where the facet folds, which inverts its cell.
+      if (p.facet == q.facet || shares_node(p, q)) return;
+      // Orientations are areas (2D) or volumes (3D) on the pair's scale L: below 1e-12 L^d
+      // they are rounding.
+      const double L = (hi.col(i).cwiseMax(hi.col(j)) - lo.col(i).cwiseMin(lo.col(j))).norm();
+      const double tol = 1e-12 * std::pow(L, mesh.dim);
       const bool cross =
-          mesh.dim == 2 ? segments_cross(point(p.nodes[0]), point(p.nodes[1]), point(q.nodes[0]), point(q.nodes[1]))
+          mesh.dim == 2 ? segments_cross(point(p.nodes[0]), point(p.nodes[1]), point(q.nodes[0]), point(q.nodes[1]), tol)
                         : triangles_cross({point(p.nodes[0]), point(p.nodes[1]), point(p.nodes[2])},
-                                          {point(q.nodes[0]), point(q.nodes[1]), point(q.nodes[2])});
+                                          {point(q.nodes[0]), point(q.nodes[1]), point(q.nodes[2])}, tol);
       if (!cross) return;
       if (out.count++ == 0 || std::make_pair(std::min(p.facet, q.facet), std::max(p.facet, q.facet)) <
                                   std::make_pair(out.first[0], out.first[1]))

@@ -11,6 +11,7 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/threads.h"
+#include "meshmorph/timings.h"
 #include "solve/detail/petsc_runtime.h"
 
 namespace meshmorph::detail {
@@ -202,6 +203,7 @@ PetscSolver::~PetscSolver() {
 std::string PetscSolver::name() const { return impl_->gamg() ? "petsc-gamg" : "petsc-hypre"; }
 
 bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  const PhaseTimer timer(Phase::SolverSetup);
   MESHMORPH_CHECK(A.rows() == A.cols() && A.isCompressed(), "petsc: the matrix must be square and compressed");
   Impl& s = *impl_;
   s.ready = false;
@@ -235,6 +237,7 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& A) {
 
 LinearSolveStats PetscSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                                              Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   Impl& s = *impl_;
   if (!s.ready || !s.same_pattern(A)) {
     LinearSolveStats stats;
@@ -252,6 +255,7 @@ LinearSolveStats PetscSolver::solve_previous(const Eigen::SparseMatrix<double>& 
 }
 
 LinearSolveStats PetscSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+  const PhaseTimer timer(Phase::Solve);
   Impl& s = *impl_;
   const ScopedThreads threads(s.options.threads);
   const LinearSolveStats stats = s.cg(b, x, rtol);
