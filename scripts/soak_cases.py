@@ -177,8 +177,17 @@ def crossing_edges(x, edges):
         s = cross(dpq, r[:, None, :]) / den
     share = (edges[:, None, 0] == edges[None, :, 0]) | (edges[:, None, 0] == edges[None, :, 1]) | \
         (edges[:, None, 1] == edges[None, :, 0]) | (edges[:, None, 1] == edges[None, :, 1])
-    hit = (den != 0) & (t >= 0) & (t <= 1) & (s >= 0) & (s <= 1) & ~share
-    return int(np.sum(np.triu(hit, 1)))
+    # Parallel to rounding (edges along one straight side): t and s are noise there, and such
+    # edges meet only where they lie on one line and overlap.
+    length = np.linalg.norm(r, axis=1)
+    parallel = np.abs(den) <= 1e-12 * length[:, None] * length[None, :]
+    hit = ~parallel & (t >= 0) & (t <= 1) & (s >= 0) & (s <= 1) & ~share
+    with np.errstate(divide='ignore', invalid='ignore'):
+        off_line = np.abs(cross(dpq, r[:, None, :])) / length[:, None]  # p_j's distance from the line of edge i
+        a = np.einsum('ijk,ik->ij', dpq, r) / length[:, None] ** 2     # p_j and q_j along edge i (0 … 1)
+        b = a + np.einsum('jk,ik->ij', r, r) / length[:, None] ** 2
+    overlap = parallel & (off_line <= 1e-12 * length[:, None]) & (np.maximum(a, b) > 0) & (np.minimum(a, b) < 1) & ~share
+    return int(np.sum(np.triu(hit | overlap, 1)))
 
 
 def p1_problems(mesh):

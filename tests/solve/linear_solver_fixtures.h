@@ -5,10 +5,12 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <gtest/gtest.h>
 
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/quality/metric_registry.h"
+#include "meshmorph/solve/linear_solver.h"
 
 namespace meshmorph::test {
 
@@ -98,6 +100,17 @@ inline Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed = 3) {
   Eigen::VectorXd v(n);
   for (Eigen::Index i = 0; i < n; ++i) v[i] = u(rng);
   return v;
+}
+
+/// Solves with a factorized iterative solver to 1e-10, then again from that solution to
+/// 1e-6, which must take no iteration; returns the second solve's figures.
+inline LinearSolveStats solve_again_from_the_solution(LinearSolver& solver, const Eigen::VectorXd& b) {
+  Eigen::VectorXd x;
+  EXPECT_TRUE(solver.solve(b, x, 1e-10).ok);
+  const LinearSolveStats again = solver.solve(b, x, 1e-6);
+  EXPECT_TRUE(again.ok);
+  EXPECT_EQ(again.iterations, 0);
+  return again;
 }
 
 }  // namespace meshmorph::test

@@ -134,11 +134,7 @@ TEST(PetscSolver, StartsFromTheGivenInitialGuess) {
   for (const LinearSolverKind kind : k_petsc_kinds) {
     auto solver = make_linear_solver(petsc_options(kind, 8), static_cast<std::size_t>(A.rows()));
     ASSERT_TRUE(solver->factorize(A));
-    Eigen::VectorXd x;
-    ASSERT_TRUE(solver->solve(b, x, 1e-10).ok);
-    const LinearSolveStats again = solver->solve(b, x, 1e-6);
-    EXPECT_TRUE(again.ok);
-    EXPECT_EQ(again.iterations, 0);
+    test::solve_again_from_the_solution(*solver, b);
     Eigen::VectorXd zero = Eigen::VectorXd::Ones(A.rows());
     EXPECT_TRUE(solver->solve(Eigen::VectorXd::Zero(A.rows()), zero).ok);
     EXPECT_EQ(zero.norm(), 0.0);
