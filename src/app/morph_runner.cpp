@@ -87,14 +87,22 @@ MorphOutput MorphRunner::finish(MorphOutput out, const Progress& p, const Bounda
 
 // The augmented Lagrangian hands back valid meshes only: a result that fails the report's
 // checks (cells inverted between the samples that the method judged them at, a boundary
-// that passes through itself) is replaced by the mesh its solve started from.
+// that passes through itself) is replaced by the mesh its last solve started from, or, where
+// that fails them too (an earlier step of a series that overlapped), by the input.
 MorphOutput MorphRunner::keep_valid(MorphOutput out, const Eigen::MatrixXd& before, const Progress& p,
                                     const BoundaryTargets& bc) {
   if (!morpher_ || out.report.valid) return out;
   const std::string why = out.report.message;
-  x_ = before;
-  out = finish(std::move(out), p, bc);
-  out.report.message = why + "; the mesh returned is the one that solve started from";
+  const Eigen::MatrixXd* input = &input_.x;
+  for (const Eigen::MatrixXd* x : {&before, input}) {
+    x_ = *x;
+    out = finish(std::move(out), p, bc);
+    if (out.report.valid || x == input) {
+      out.report.message = why + (x == &before ? "; the mesh returned is the one the last solve started from"
+                                               : "; the mesh returned is the input");
+      return out;
+    }
+  }
   return out;
 }
 

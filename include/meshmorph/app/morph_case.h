@@ -64,7 +64,8 @@ class MorphRunner {
   /// `on_step` after each but the last (docs/morph.md, Time series; the baselines solve once
   /// per increment on the mesh the last one left and stop at one that inverts a cell). A
   /// morph whose result fails the checks of the report (inverted between the samples, or
-  /// overlapping) ends on the mesh its last solve started from, which passed them.
+  /// overlapping) ends on the mesh its last solve started from where that passes them, else
+  /// on the input.
   MorphOutput run(const StepSink& on_step = {});
 
   /// One solve towards `target` (d × n: positions of the prescribed nodes) from where the
