@@ -110,7 +110,7 @@ MorphOutput MorphRunner::run(const StepSink& on_step) {
   MorphOutput out;
   Progress p;
   out.report.converged = true;
-  Eigen::MatrixXd before = x_;
+  Eigen::MatrixXd before;  // x_ where the last solve started (steps_ ≥ 1)
   for (int s = 1; s <= steps_; ++s) {
     ++solves_;
     before = x_;
