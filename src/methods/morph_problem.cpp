@@ -96,6 +96,20 @@ void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
 }
 
 template <int d>
+bool MorphProblem<d>::evaluate_gradient(Assembly& out) {
+  // A slide node's frame comes from its Hessian block (energy/slide_constraints.h).
+  if (!slides_.empty()) return false;
+  AssemblyOptions o;
+  o.want = Want::Gradient;
+  o.weights = weights_;
+  o.threads = threads_;
+  assembler_->assemble(*metric_, x_, o, out);
+  if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, Want::Gradient, HessianMode::Projected, out);
+  if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, Want::Gradient, out);
+  return true;
+}
+
+template <int d>
 double MorphProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
   if (!step_to(p, alpha, trial_)) return std::numeric_limits<double>::infinity();
   double v = assembler_->value(*metric_, trial_, weights_, threads_);

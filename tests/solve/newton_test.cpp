@@ -82,14 +82,27 @@ class Quartic final : public NewtonProblem {
     out.hessian.setIdentity();
     for (Eigen::Index i = 0; i < x.size(); ++i) out.hessian.coeffRef(i, i) = diag[i];
   }
+  bool evaluate_gradient(Assembly& out) override {
+    if (!gradient_alone) return false;
+    ++gradient_evaluations;
+    out.value = f(x);
+    out.gradient = gradient();
+    return true;
+  }
   Eigen::VectorXd gradient() const { return (x.array().cube() - x.array()).matrix() + s_ * (x - c_); }
+  // ½ gᵀH⁻¹g with the exact Hessian at x.
+  double decrement() const {
+    const Eigen::ArrayXd h = 3.0 * x.array().square() - 1.0 + s_;
+    return 0.5 * (gradient().array().square() / h).sum();
+  }
   double trial_value(const Eigen::VectorXd& p, double alpha) override { return f(x + alpha * p); }
   void accept(const Eigen::VectorXd& p, double alpha) override {
     EXPECT_TRUE(std::isfinite(f(x + alpha * p)));
     x += alpha * p;
   }
   Eigen::VectorXd x;
-  int evaluations = 0, exact_evaluations = 0;
+  int evaluations = 0, exact_evaluations = 0, gradient_evaluations = 0;
+  bool gradient_alone = false;  // evaluate_gradient() answers
   // A constant that the energy carries (a penalised, weighted energy's large part) and the
   // relative round-off of its evaluation, as a deterministic pseudo-noise.
   double offset = 0.0, noise = 0.0;
@@ -160,6 +173,45 @@ TEST(Newton, StepsAndConfirmsConvergenceWithThePreviousFactorization) {
   EXPECT_EQ(second.linear_solves, 1);
   // The estimate never replaces the test: the gradient is still at the tolerance's level.
   EXPECT_LT(q.gradient().norm(), 1e-9);
+}
+
+// After a full step the test is first taken from the gradient alone and the factorization of
+// the iterate before the step: the iteration ends at the same iterate as with the full test,
+// without the Hessian there, and the decrement there is within the tolerance.
+TEST(Newton, TestsAfterAFullStepFromTheGradientAndTheEarlierFactorization) {
+  Quartic full = convex_quartic(), cheap = convex_quartic();
+  cheap.gradient_alone = true;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-20;
+  DenseSolver s1, s2;
+  const NewtonStats a = newton(full, s1, o), b = newton(cheap, s2, o);
+  ASSERT_TRUE(a.converged && b.converged) << a.message << b.message;
+  EXPECT_EQ(cheap.x, full.x);
+  EXPECT_EQ(b.iterations, a.iterations);
+  EXPECT_EQ(cheap.gradient_evaluations, 1);
+  EXPECT_EQ(cheap.evaluations, full.evaluations - 1);
+  EXPECT_LE(cheap.decrement(), o.decrement_tolerance);
+  EXPECT_LE(b.decrement, o.decrement_tolerance / 32.0);
+}
+
+// A Hessian off by a factor 3 gives steps of a third of Newton's, all taken in full: the
+// decrement falls by only (2/3)² per step. The test from the gradient is tried after the
+// first step, where it fails, and then only where the quadratic model predicts a pass.
+TEST(Newton, StopsTestingFromTheGradientWhereItFails) {
+  Quartic q = convex_quartic();
+  q.gradient_alone = true;
+  q.hessian_scale = 3.0;
+  DenseSolver solver;
+  NewtonOptions o;
+  o.decrement_tolerance = 1e-12;
+  NewtonMemory memory;
+  const NewtonStats s = newton(q, solver, o, &memory);
+  ASSERT_TRUE(s.converged) << s.message;
+  EXPECT_GT(s.iterations, 10);
+  EXPECT_GE(q.gradient_evaluations, 1);
+  EXPECT_LE(q.gradient_evaluations, 2);
+  EXPECT_LE(q.decrement() / q.hessian_scale, o.decrement_tolerance);  // in Newton's own Hessian
+  EXPECT_TRUE(memory.test_from_gradient);
 }
 
 // A problem changed by less than the decrement test sees (its minimiser shifted by ~5e-7)

@@ -17,6 +17,9 @@ class NewtonProblem {
   virtual ~NewtonProblem() = default;
   /// Value, gradient and Hessian (in `mode`) at the current iterate.
   virtual void evaluate(HessianMode mode, Assembly& out) = 0;
+  /// Value and gradient alone at the current iterate (`out.hessian` untouched), where the
+  /// problem can give them for less than evaluate(); false where it cannot.
+  virtual bool evaluate_gradient(Assembly& /*out*/) { return false; }
   /// Energy at x + α p; +∞ where it is not defined (an inverted element).
   virtual double trial_value(const Eigen::VectorXd& p, double alpha) = 0;
   /// Whether x + α p may be accepted: a check beyond the energy's own barrier (e.g. the
@@ -119,6 +122,10 @@ struct NewtonMemory {
   /// projected step (α = 1), cleared when no small shift makes the exact Hessian positive
   /// definite. Far from a minimiser the projected Hessian's steps go much further.
   bool exact_ready = false;
+  /// Whether the test after a full step is tried first from the gradient alone and the
+  /// earlier factorization: cleared when that test fails, set again when the full test passes
+  /// after a full step (on hard motions most steps leave the decrement above the test).
+  bool test_from_gradient = true;
 };
 
 /// The inexact Newton solves of newton_matrix_free().

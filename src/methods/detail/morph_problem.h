@@ -55,6 +55,7 @@ class MorphProblem final : public NewtonProblem {
   double min_quality();
 
   void evaluate(HessianMode mode, Assembly& out) override;
+  bool evaluate_gradient(Assembly& out) override;
   double trial_value(const Eigen::VectorXd& p, double alpha) override;
   bool admissible(const Eigen::VectorXd& p, double alpha) override;
   void accept(const Eigen::VectorXd& p, double alpha) override;
