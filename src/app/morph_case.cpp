@@ -25,6 +25,9 @@ MorphSettings read_morph_settings(const CaseFile& c, int threads) {
   m.adaptive_weights = weights == "adaptive";
   r.read("alpha", m.alpha, 0.0, 100.0);
   r.read("beta", m.beta, 1.0, 100.0);
+  std::string growth = "adaptive";
+  r.read("weight_growth", growth, {"adaptive", "fixed"});
+  m.adaptive_growth = growth == "adaptive";
   r.read("max_weight", m.max_weight, 1.0, 1e300);
   r.read("max_outer", m.max_outer, 1, 10000);
   r.read("max_weight_updates", m.max_weight_updates, 0, 10000);

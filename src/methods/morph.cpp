@@ -99,6 +99,7 @@ class MorphImpl final : public Morpher::Impl {
       // `weight_steps` steps before the next one, and the loop ends with a solve that meets δ
       // once the weights stop changing or after `max_weight_updates` updates.
       bool settled = !options_.adaptive_weights;
+      double growth = options_.beta;  // the bound on a weight's growth per update (eq. 11's β)
       for (int update = 0;; ++update) {
         const bool last = settled || update >= options_.max_weight_updates;
         no.decrement_tolerance = delta * P.reference_energy();
@@ -119,7 +120,16 @@ class MorphImpl final : public Morpher::Impl {
         // Algorithm 2's loop condition: the gradient is below δ with the weights just updated,
         // i.e. Newton had nothing to do after an update.
         if (last || !(s.converged || s.stopped) || (update > 0 && s.iterations == 0)) break;
-        if (P.update_weights(options_.alpha, options_.beta, options_.max_weight))
+        // Adaptive growth (docs/morph.md, "Weight growth"): where Newton absorbed the last
+        // update in one step, the next may grow the weights by the square of the last bound,
+        // up to β⁴; where it needed all `weight_steps`, the bound goes back by a square root.
+        if (options_.adaptive_growth && update > 0) {
+          if (s.converged && s.iterations <= 1)
+            growth = std::min(growth * growth, std::pow(options_.beta, 4));
+          else if (s.stopped)
+            growth = std::max(options_.beta, std::sqrt(growth));
+        }
+        if (P.update_weights(options_.alpha, growth, options_.max_weight))
           set_mu();
         else if (s.converged)
           break;

@@ -40,6 +40,10 @@ struct MorphOptions {
   bool adaptive_weights = true;  ///< Algorithm 2; false keeps ω = 1 (paper §4.2 comparison)
   double alpha = 3.0;      ///< eq. 10
   double beta = 1.25;      ///< eq. 11
+  /// Eq. 11's bound per update squared (up to β⁴) after an update that Newton absorbed in one
+  /// step, and back by a square root (down to β) after one that took `weight_steps`; false:
+  /// β at every update, as in the paper (docs/morph.md, "Weight growth").
+  bool adaptive_growth = true;
   double max_weight = 1e12;  ///< upper bound on ω_e (docs/morph.md)
   int max_outer = 40;      ///< augmented-Lagrangian iterations per step
   /// Weight updates per augmented-Lagrangian iteration (Algorithm 2's loop) at most.
