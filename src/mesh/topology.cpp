@@ -172,26 +172,39 @@ Topology build_topology(const Mesh& mesh, TopologyParts parts) {
     }
   }
 
-  // node → nodes: union of the nodes of the cells around each node.
-  std::vector<std::vector<std::int32_t>> rows(n_nodes);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n_nodes); ++i) {
-    auto& row = rows[static_cast<std::size_t>(i)];
-    row.push_back(static_cast<std::int32_t>(i));
-    for (auto k = topo.node_cell_offset[static_cast<std::size_t>(i)]; k < topo.node_cell_offset[static_cast<std::size_t>(i) + 1]; ++k) {
-      const auto [bi, c] = topo.locate(topo.node_cells[static_cast<std::size_t>(k)]);
-      const auto& b = mesh.cells[bi];
-      row.insert(row.end(), b.cell(c), b.cell(c) + b.n_nodes_per_cell());
-    }
-    std::sort(row.begin(), row.end());
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-  }
+  // node → nodes: union of the nodes of the cells around each node. Rows go into one flat
+  // buffer per chunk of nodes, not one vector per node: a million nodes' vectors, each with
+  // room for the duplicates of every cell around the node, would take several times the result.
+  constexpr std::size_t k_chunk = 4096;
+  const std::size_t n_chunks = (n_nodes + k_chunk - 1) / k_chunk;
+  std::vector<std::vector<std::int32_t>> chunks(n_chunks);
   topo.node_node_offset.assign(n_nodes + 1, 0);
-  for (std::size_t i = 0; i < n_nodes; ++i) topo.node_node_offset[i + 1] = topo.node_node_offset[i] + static_cast<std::int64_t>(rows[i].size());
+#pragma omp parallel
+  {
+    std::vector<std::int32_t> row;
+#pragma omp for schedule(dynamic)
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n_chunks); ++k) {
+      auto& out = chunks[static_cast<std::size_t>(k)];
+      const std::size_t first = static_cast<std::size_t>(k) * k_chunk;
+      for (std::size_t i = first; i < std::min(n_nodes, first + k_chunk); ++i) {
+        row.assign(1, static_cast<std::int32_t>(i));
+        for (auto c = topo.node_cell_offset[i]; c < topo.node_cell_offset[i + 1]; ++c) {
+          const auto [bi, cell] = topo.locate(topo.node_cells[static_cast<std::size_t>(c)]);
+          const auto& b = mesh.cells[bi];
+          row.insert(row.end(), b.cell(cell), b.cell(cell) + b.n_nodes_per_cell());
+        }
+        std::sort(row.begin(), row.end());
+        row.erase(std::unique(row.begin(), row.end()), row.end());
+        out.insert(out.end(), row.begin(), row.end());
+        topo.node_node_offset[i + 1] = static_cast<std::int64_t>(row.size());
+      }
+    }
+  }
+  prefix_sum(topo.node_node_offset);
   topo.node_nodes.reserve(static_cast<std::size_t>(topo.node_node_offset.back()));
-  for (auto& row : rows) {
-    topo.node_nodes.insert(topo.node_nodes.end(), row.begin(), row.end());
-    std::vector<std::int32_t>().swap(row);
+  for (auto& out : chunks) {
+    topo.node_nodes.insert(topo.node_nodes.end(), out.begin(), out.end());
+    std::vector<std::int32_t>().swap(out);
   }
   return topo;
 }
