@@ -119,6 +119,37 @@ $EndElements
   EXPECT_EQ(m.groups[1].tag, 11);
 }
 
+// MSH 2.2 writes a cell of several physical groups once per group: the mesh holds each cell
+// once, where it first appears, with that line's tags.
+TEST(MshRead, Msh22CellsRepeatedPerGroupAreKeptOnceWithTheirFirstTags) {
+  const fs::path p = write_file("repeats22.msh", R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+5
+5 0 0 0
+6 1 0 0
+7 1 1 0
+9 0 1 0
+10 2 0 0
+$EndNodes
+$Elements
+6
+1 2 2 11 1 5 6 7
+2 2 2 12 2 5 6 7
+3 2 2 11 3 5 7 9
+4 2 2 11 4 6 10 7
+5 2 2 13 5 5 7 9
+6 2 2 14 6 6 10 7
+$EndElements
+)");
+  const Mesh m = read_mesh(p);
+  ASSERT_EQ(m.cells.size(), 1u);
+  EXPECT_EQ(m.cells[0].nodes, (std::vector<std::int32_t>{0, 1, 2, 0, 2, 3, 1, 4, 2}));
+  EXPECT_EQ(m.cells[0].physical, (std::vector<std::int32_t>{11, 11, 11}));
+  EXPECT_EQ(m.cells[0].entity, (std::vector<std::int32_t>{1, 3, 4}));
+}
+
 TEST(MshRead, EntityTagsThatMixPhysicalTagsAreRenumberedOnWrite) {
   Mesh m;
   m.dim = 2;
