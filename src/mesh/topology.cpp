@@ -120,6 +120,7 @@ Topology build_topology(const Mesh& mesh, TopologyParts parts) {
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  edges.shrink_to_fit();  // each edge was listed by every cell around it (6 per tetrahedron)
   topo.edges = std::move(edges);
 
   std::sort(keys.begin(), keys.end(), [](const FacetKey& a, const FacetKey& b) {
@@ -151,6 +152,7 @@ Topology build_topology(const Mesh& mesh, TopologyParts parts) {
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   topo.boundary_corners = std::move(corners);
+  topo.facets.shrink_to_fit();  // grown by doubling: up to twice its size for the whole run
   if (parts == TopologyParts::Facets) return topo;
 
   // node → cells
