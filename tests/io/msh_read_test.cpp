@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,18 @@ fs::path write_file(const std::string& name, const std::string& text) {
   std::ofstream(dir / name, std::ios::binary) << text;
   return dir / name;
 }
+
+// MSH 2.2 text with these $Nodes and $Elements lines.
+std::string msh22(const std::vector<std::string>& nodes, const std::vector<std::string>& elements) {
+  std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
+  for (const std::string& line : nodes) text += line + "\n";
+  text += "$EndNodes\n$Elements\n" + std::to_string(elements.size()) + "\n";
+  for (const std::string& line : elements) text += line + "\n";
+  return text + "$EndElements\n";
+}
+
+// The unit square's corners, with sparse unordered tags.
+const std::vector<std::string> k_square_nodes{"5 0 0 0", "6 1 0 0", "7 1 1 0", "9 0 1 0"};
 
 // Unknown sections, a parametric node block, unordered sparse tags, an entity with two
 // physical tags (the first one counts), elements in two blocks of one type.
@@ -87,23 +100,7 @@ $EndPeriodic
 }
 
 TEST(MshRead, Msh22WithZeroOrManyTags) {
-  const fs::path p = write_file("tags22.msh", R"($MeshFormat
-2.2 0 8
-$EndMeshFormat
-$Nodes
-4
-5 0 0 0
-6 1 0 0
-7 1 1 0
-9 0 1 0
-$EndNodes
-$Elements
-3
-1 2 0 5 6 7
-2 2 4 11 12 2 -3 5 7 9
-3 1 2 4 4 9 5
-$EndElements
-)");
+  const fs::path p = write_file("tags22.msh", msh22(k_square_nodes, {"1 2 0 5 6 7", "2 2 4 11 12 2 -3 5 7 9", "3 1 2 4 4 9 5"}));
   const Mesh m = read_mesh(p);
   ASSERT_EQ(m.cells.size(), 1u);
   EXPECT_EQ(m.cells[0].physical, (std::vector<std::int32_t>{0, 11}));
@@ -117,6 +114,20 @@ $EndElements
   EXPECT_EQ(m.groups[0].tag, 4);
   EXPECT_EQ(m.groups[1].dim, 2);
   EXPECT_EQ(m.groups[1].tag, 11);
+}
+
+// MSH 2.2 writes a cell of several physical groups once per group: the mesh holds each cell
+// once, where it first appears, with that line's tags.
+TEST(MshRead, Msh22CellsRepeatedPerGroupAreKeptOnceWithTheirFirstTags) {
+  std::vector<std::string> nodes = k_square_nodes;
+  nodes.push_back("10 2 0 0");
+  const fs::path p = write_file("repeats22.msh", msh22(nodes, {"1 2 2 11 1 5 6 7", "2 2 2 12 2 5 6 7", "3 2 2 11 3 5 7 9",
+                                                              "4 2 2 11 4 6 10 7", "5 2 2 13 5 5 7 9", "6 2 2 14 6 6 10 7"}));
+  const Mesh m = read_mesh(p);
+  ASSERT_EQ(m.cells.size(), 1u);
+  EXPECT_EQ(m.cells[0].nodes, (std::vector<std::int32_t>{0, 1, 2, 0, 2, 3, 1, 4, 2}));
+  EXPECT_EQ(m.cells[0].physical, (std::vector<std::int32_t>{11, 11, 11}));
+  EXPECT_EQ(m.cells[0].entity, (std::vector<std::int32_t>{1, 3, 4}));
 }
 
 TEST(MshRead, EntityTagsThatMixPhysicalTagsAreRenumberedOnWrite) {

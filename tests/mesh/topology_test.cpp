@@ -62,6 +62,43 @@ TEST(Topology, NodeAdjacencyIsSymmetricAndIncludesItself) {
   EXPECT_EQ(topo.node_cell_offset[1] - topo.node_cell_offset[0], 2);  // node 0 is in both cells
 }
 
+// A strip of 2 × 5000 nodes ((i, 0) is node 2i, (i, 1) node 2i + 1), two triangles per
+// square, the cells listed from the far end: node rows span several of the chunks that
+// build_topology fills in parallel.
+TEST(Topology, NodeRowsOfALongStripAreTheSortedNeighboursOfEachNode) {
+  constexpr std::int32_t n = 5000;
+  Mesh m;
+  m.dim = 2;
+  m.x.resize(2, 2 * n);
+  for (std::int32_t i = 0; i < n; ++i) {
+    m.x.col(2 * i) << i, 0;
+    m.x.col(2 * i + 1) << i, 1;
+  }
+  CellBlock tris{ElementType::Triangle, 1, {}, {}, {}};
+  for (std::int32_t i = n - 2; i >= 0; --i) {
+    const std::int32_t lower[] = {2 * i, 2 * i + 2, 2 * i + 3}, upper[] = {2 * i, 2 * i + 3, 2 * i + 1};
+    tris.push_back(lower, 1);
+    tris.push_back(upper, 1);
+  }
+  m.cells.push_back(tris);
+  const auto topo = build_topology(m);
+  ASSERT_EQ(topo.node_node_offset.size(), static_cast<std::size_t>(2 * n + 1));
+  for (std::int32_t i = 0; i < n; ++i) {
+    // Square i is cut by its diagonal 2i–2i+3: bottom node 2i meets 2i − 2 and 2i + 1 through
+    // square i − 1's lower triangle, 2i + 2, 2i + 3 and 2i + 1 through square i; top node
+    // 2i + 1 meets 2i − 2, 2i − 1, 2i through square i − 1 and 2i, 2i + 3 through square i.
+    std::vector<std::int32_t> bottom{2 * i - 2, 2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3};
+    std::vector<std::int32_t> top{2 * i - 2, 2 * i - 1, 2 * i, 2 * i + 1, 2 * i + 3};
+    if (i == 0) bottom = {0, 1, 2, 3}, top = {0, 1, 3};
+    if (i == n - 1) bottom = {2 * i - 2, 2 * i, 2 * i + 1}, top = {2 * i - 2, 2 * i - 1, 2 * i, 2 * i + 1};
+    for (const auto& [node, want] : {std::pair{2 * i, bottom}, std::pair{2 * i + 1, top}}) {
+      const auto* row = topo.node_nodes.data() + topo.node_node_offset[static_cast<std::size_t>(node)];
+      const auto* end = topo.node_nodes.data() + topo.node_node_offset[static_cast<std::size_t>(node) + 1];
+      ASSERT_EQ(std::vector<std::int32_t>(row, end), want) << "node " << node;
+    }
+  }
+}
+
 TEST(Topology, RejectsAFacetSharedByThreeCells) {
   auto m = two_triangles();
   const std::int32_t t2[] = {0, 2, 1};
