@@ -15,9 +15,12 @@
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/quality/element_quality.h"
+#include "methods/morph_fixtures.h"
 
 namespace meshmorph {
 namespace {
+
+using test::min_quality;
 
 // x ↦ s R x + t: a rotation about a skew axis (3D) or by 35° (2D), scaled and translated.
 Eigen::MatrixXd similarity(const Eigen::MatrixXd& x) {
@@ -43,18 +46,6 @@ BoundaryTargets all_boundary(const Mesh& mesh, const Topology& topo, const Eigen
     bc.target.col(node) = target.col(node);
   }
   return bc;
-}
-
-double min_quality(const Mesh& input, const Eigen::MatrixXd& x) {
-  Mesh moved = input;
-  moved.x = x;
-  double q = 1.0;
-  for (const CellBlock& block : input.cells)
-    for (std::size_t c = 0; c < block.n_cells(); ++c) {
-      const Eigen::MatrixXd X0 = cell_coordinates(input, block, c), X = cell_coordinates(moved, block, c);
-      q = std::min(q, element_quality(block.type, block.order, X, &X0));
-    }
-  return q;
 }
 
 struct Case {
@@ -239,15 +230,7 @@ TEST(Morph, AnExhaustedBudgetReportsWhyAndLeavesAValidMesh) {
 TEST(Morph, GuardedCellsLetAP2MeshFollowALargeTranslation) {
   const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/../../examples/meshes/sphere_in_box_p2.msh");
   const Topology topo = build_topology(mesh);
-  BoundaryTargets bc;
-  bc.role.assign(mesh.n_nodes(), NodeRole::Free);
-  bc.target = mesh.x;
-  bc.normal = Eigen::MatrixXd::Zero(3, static_cast<Eigen::Index>(mesh.n_nodes()));
-  for (std::int32_t node : mesh.group_nodes(*mesh.find_group("box"))) bc.role[node] = NodeRole::Fixed;
-  for (std::int32_t node : mesh.group_nodes(*mesh.find_group("sphere"))) {
-    bc.role[node] = NodeRole::Prescribed;
-    bc.target(0, node) += 0.5;
-  }
+  const BoundaryTargets bc = test::translated_group(mesh, "box", "sphere", 0.5);
   Morpher morpher(mesh, topo, bc, MorphOptions{});
   Eigen::MatrixXd x = mesh.x;
   const MorphResult r = morpher.solve(bc.target, x);
