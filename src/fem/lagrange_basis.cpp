@@ -11,15 +11,16 @@ namespace meshmorph {
 namespace {
 
 // Exponents of the monomials spanning the element's space: total degree ≤ p on simplices,
-// degree ≤ p in each variable on tensor cells (lines are both).
+// degree ≤ p in each variable on tensor cells (lines are both), total degree ≤ p in (ξ, η)
+// times degree ≤ p in ζ on prisms.
 Eigen::MatrixXi monomial_exponents(ElementType type, int p, int dim) {
   std::vector<std::array<int, 3>> e;
-  const bool simplex = is_simplex(type);
+  const bool simplex = is_simplex(type), prism = type == ElementType::Prism;
   const int pz = dim > 2 ? p : 0, py = dim > 1 ? p : 0, px = dim > 0 ? p : 0;
   for (int k = 0; k <= pz; ++k)
     for (int j = 0; j <= py; ++j)
       for (int i = 0; i <= px; ++i)
-        if (!simplex || i + j + k <= p) e.push_back({i, j, k});
+        if (prism ? i + j <= p : (!simplex || i + j + k <= p)) e.push_back({i, j, k});
   Eigen::MatrixXi out(dim, static_cast<Eigen::Index>(e.size()));
   for (std::size_t m = 0; m < e.size(); ++m)
     for (int k = 0; k < dim; ++k) out(k, static_cast<Eigen::Index>(m)) = e[m][static_cast<std::size_t>(k)];
@@ -32,9 +33,23 @@ double ipow(double x, int n) {
   return r;
 }
 
+// The linear pyramid's corners: N = h (1 + a u)(1 + b v)/4 with h = 1 − ζ, u = ξ/h, v = η/h,
+// signs (a, b) of the base corner; the apex is N₄ = ζ. At the apex (h = 0) u = v = 0.
+constexpr double k_base_sign[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+
+struct Collapsed {
+  double h, u, v;
+};
+
+Collapsed collapse(const Eigen::VectorXd& xi) {
+  const double h = 1 - xi(2);
+  return {h, h > 0 ? xi(0) / h : 0.0, h > 0 ? xi(1) / h : 0.0};
+}
+
 }  // namespace
 
 LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_element(type, order)) {
+  if (type == ElementType::Pyramid) return;  // rational: closed forms below
   const int n = ref_->n_nodes(), d = ref_->dim;
   exponents_ = monomial_exponents(type, order, d);
   Eigen::MatrixXd V(n, n);  // V(b, m) = monomial m at node b
@@ -48,6 +63,7 @@ LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_elem
 }
 
 Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) return corner_weights(ElementType::Pyramid, xi);
   const int n = this->n(), d = dim();
   Eigen::VectorXd mono(n);
   for (int m = 0; m < n; ++m) {
@@ -59,6 +75,16 @@ Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) {
+    const auto [h, u, v] = collapse(xi);
+    Eigen::MatrixXd G(5, 3);
+    for (int i = 0; i < 4; ++i) {
+      const double a = k_base_sign[i][0], b = k_base_sign[i][1];
+      G.row(i) << a * (1 + b * v) / 4, b * (1 + a * u) / 4, (a * b * u * v - 1) / 4;
+    }
+    G.row(4) << 0, 0, 1;
+    return G;
+  }
   const int n = this->n(), d = dim();
   Eigen::MatrixXd dmono(n, d);
   for (int m = 0; m < n; ++m)
@@ -78,6 +104,18 @@ Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::hessians(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) {
+    const auto [h, u, v] = collapse(xi);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(5, 9);
+    for (int i = 0; i < 4; ++i) {
+      const double ab = k_base_sign[i][0] * k_base_sign[i][1] / (4 * h);
+      H(i, 1) = H(i, 3) = ab;                  // ∂²/∂ξ∂η
+      H(i, 2) = H(i, 6) = ab * v;              // ∂²/∂ξ∂ζ
+      H(i, 5) = H(i, 7) = ab * u;              // ∂²/∂η∂ζ
+      H(i, 8) = 2 * ab * u * v;                // ∂²/∂ζ²
+    }
+    return H;
+  }
   const int n = this->n(), d = dim();
   Eigen::MatrixXd ddmono(n, d * d);
   for (int m = 0; m < n; ++m)
