@@ -72,6 +72,10 @@ std::optional<VtkCell> vtk_cell(int code) {
     case 12: return VtkCell{ElementType::Hexahedron, 1};
     case 29: return VtkCell{ElementType::Hexahedron, 2};
     case 72: return VtkCell{ElementType::Hexahedron, 0};
+    case 13: return VtkCell{ElementType::Prism, 1};
+    case 73: return VtkCell{ElementType::Prism, 0};
+    case 14: return VtkCell{ElementType::Pyramid, 1};
+    case 74: return VtkCell{ElementType::Pyramid, 0};
     default: return std::nullopt;
   }
 }
@@ -166,9 +170,10 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
     if (order == 0)
       for (int p = 1; p <= 4 && order == 0; ++p)
         if (n_nodes_of(vc->type, p) == n) order = p;
-    if (order == 0 || n_nodes_of(vc->type, order) != n)
+    const int highest = vc->type == ElementType::Prism || vc->type == ElementType::Pyramid ? max_order_of(vc->type) : 4;
+    if (order == 0 || order > highest || n_nodes_of(vc->type, order) != n)
       f.fail(off_node, "cell " + std::to_string(i) + " of VTK type " + std::to_string(types[i]) + " has " +
-                           std::to_string(n) + " points, which is no complete Lagrange cell of order 1-4");
+                           std::to_string(n) + " points, which is no complete Lagrange cell of order 1-" + std::to_string(highest));
     if (vc->type != last_type || order != last_order) {  // the permutation cache takes a lock
       perm = &vtk_to_gmsh_permutation(vc->type, order);
       block = &builder.block(vc->type, order);

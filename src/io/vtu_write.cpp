@@ -75,6 +75,8 @@ std::uint8_t cell_type_code(const CellBlock& b) {
     case ElementType::Quadrilateral: return 9;
     case ElementType::Tetrahedron: return 10;
     case ElementType::Hexahedron: return 12;
+    case ElementType::Prism: return 13;
+    case ElementType::Pyramid: return 14;
   }
   return 0;
 }
