@@ -161,9 +161,9 @@ std::vector<P3> lattice(ElementType type, int p) {
 }
 
 // A Gmsh reference node as a VTK lattice point of order p. Lines, quadrilaterals and
-// hexahedra: [−1, 1]^d → [0, 1]^d. Prisms: VTK's wedge has its base triangle (0, 1, 2) facing
-// away from (3, 4, 5), Gmsh's facing it: VTK's r is Gmsh's v and s is u (a reflection), t is
-// (w + 1)/2. Pyramids: corner by corner (linear only).
+// hexahedra: [−1, 1]^d → [0, 1]^d. Prisms: VTK's Lagrange wedge is Gmsh's prism with
+// t = (w + 1)/2 (VTK 9.1 gives it a positive volume so; its classic wedge is another matter,
+// vtk_cell_permutation). Pyramids: corner by corner (linear only).
 P3 vtk_lattice_point(ElementType type, const Eigen::VectorXd& x, int i, int p) {
   const auto at = [&](double v) { return static_cast<int>(std::lround(v * p)); };
   if (type == ElementType::Pyramid) {
@@ -171,7 +171,7 @@ P3 vtk_lattice_point(ElementType type, const Eigen::VectorXd& x, int i, int p) {
     const P3& c = corners[static_cast<std::size_t>(i)];
     return {c[0] * p, c[1] * p, c[2] * p};
   }
-  if (type == ElementType::Prism) return {at(x(1)), at(x(0)), at((x(2) + 1.0) / 2.0)};
+  if (type == ElementType::Prism) return {at(x(0)), at(x(1)), at((x(2) + 1.0) / 2.0)};
   const bool tensor = is_tensor(type) || type == ElementType::Line;
   P3 q{};
   for (Eigen::Index k = 0; k < x.size(); ++k) q[static_cast<std::size_t>(k)] = at(tensor ? (x(k) + 1.0) / 2.0 : x(k));
@@ -229,6 +229,11 @@ const std::vector<int>& vtk_to_gmsh_permutation(ElementType type, int order) {
   auto it = cache.find(key);
   if (it == cache.end()) it = cache.emplace(key, compute_permutation(type, order)).first;
   return it->second;
+}
+
+const std::vector<int>& vtk_cell_permutation(int vtk_type, ElementType type, int order) {
+  static const std::vector<int> k_wedge{0, 2, 1, 3, 5, 4};
+  return vtk_type == 13 ? k_wedge : vtk_to_gmsh_permutation(type, order);
 }
 
 }  // namespace meshmorph

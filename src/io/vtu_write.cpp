@@ -101,9 +101,9 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
   bool lagrange_hexahedra = false;
   for (const auto* list : {&mesh.cells, &mesh.facets})
     for (const CellBlock& b : *list) {
-      const std::vector<int>& perm = vtk_to_gmsh_permutation(b.type, b.type == ElementType::Point ? 1 : b.order);
-      const std::size_t n = b.n_cells();
       const std::uint8_t code = cell_type_code(b);
+      const std::vector<int>& perm = vtk_cell_permutation(code, b.type, b.type == ElementType::Point ? 1 : b.order);
+      const std::size_t n = b.n_cells();
       lagrange_hexahedra |= code == 72 && n > 0;
       for (std::size_t c = 0; c < n; ++c) {
         const std::int32_t* nodes = b.cell(c);

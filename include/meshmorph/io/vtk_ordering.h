@@ -25,10 +25,15 @@ Eigen::MatrixXd vtk_lagrange_points(ElementType type, int order);
 
 /// The node permutation between VTK and the internal (Gmsh) ordering, found by matching
 /// vtk_lagrange_points with reference_element(type, order).nodes (tensor cells mapped from
-/// [−1,1] to [0,1]; prisms reflected, since VTK's wedge and Gmsh's prism number their base
-/// triangle in opposite senses: (u, v, w) → (v, u, (w + 1)/2)): vtk_nodes[i] =
-/// gmsh_nodes[perm[i]]. The linear prism's is (0 2 1 3 5 4), the pyramid's the identity
-/// (both put the base's normal toward the apex). Cached; thread-safe.
+/// [−1,1] to [0,1]; prisms: (u, v, w) → (u, v, (w + 1)/2)): vtk_nodes[i] =
+/// gmsh_nodes[perm[i]]. The linear Lagrange wedge's and the pyramid's are the identity.
+/// Cached; thread-safe.
 const std::vector<int>& vtk_to_gmsh_permutation(ElementType type, int order);
+
+/// The permutation of a cell of VTK type `vtk_type`: vtk_to_gmsh_permutation, except for the
+/// classic VTK_WEDGE (13), whose base triangle (0, 1, 2) faces away from (3, 4, 5) where
+/// Gmsh's and VTK's Lagrange wedge's face it (meshio#185; VTK 9.1's vtkCellSizeFilter gives a
+/// Gmsh-ordered VTK_WEDGE a negative volume): (0 2 1 3 5 4).
+const std::vector<int>& vtk_cell_permutation(int vtk_type, ElementType type, int order);
 
 }  // namespace meshmorph
