@@ -7,6 +7,8 @@
 
 #include <Eigen/LU>
 
+#include "fem/detail/pyramid_functions.h"
+
 namespace meshmorph {
 namespace {
 
@@ -33,24 +35,16 @@ double ipow(double x, int n) {
   return r;
 }
 
-// The linear pyramid's corners: N = h (1 + a u)(1 + b v)/4 with h = 1 − ζ, u = ξ/h, v = η/h,
-// signs (a, b) of the base corner; the apex is N₄ = ζ. At the apex (h = 0) u = v = 0.
-constexpr double k_base_sign[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-
-struct Collapsed {
-  double h, u, v;
-};
-
-Collapsed collapse(const Eigen::VectorXd& xi) {
-  const double h = 1 - xi(2);
-  return {h, h > 0 ? xi(0) / h : 0.0, h > 0 ? xi(1) / h : 0.0};
-}
-
 }  // namespace
 
 LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_element(type, order)) {
-  if (type == ElementType::Pyramid) return;  // rational: closed forms below
   const int n = ref_->n_nodes(), d = ref_->dim;
+  if (type == ElementType::Pyramid) {  // rational: the nodal combinations of the pyramidal functions
+    Eigen::MatrixXd V(n, n);
+    for (int b = 0; b < n; ++b) V.row(b) = detail::pyramid_functions(order, ref_->nodes.col(b), 0).transpose();
+    coeffs_ = V.fullPivLu().inverse();
+    return;
+  }
   exponents_ = monomial_exponents(type, order, d);
   Eigen::MatrixXd V(n, n);  // V(b, m) = monomial m at node b
   for (int b = 0; b < n; ++b)
@@ -63,7 +57,7 @@ LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_elem
 }
 
 Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
-  if (type() == ElementType::Pyramid) return corner_weights(ElementType::Pyramid, xi);
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 0);
   const int n = this->n(), d = dim();
   Eigen::VectorXd mono(n);
   for (int m = 0; m < n; ++m) {
@@ -75,16 +69,7 @@ Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
-  if (type() == ElementType::Pyramid) {
-    const auto [h, u, v] = collapse(xi);
-    Eigen::MatrixXd G(5, 3);
-    for (int i = 0; i < 4; ++i) {
-      const double a = k_base_sign[i][0], b = k_base_sign[i][1];
-      G.row(i) << a * (1 + b * v) / 4, b * (1 + a * u) / 4, (a * b * u * v - 1) / 4;
-    }
-    G.row(4) << 0, 0, 1;
-    return G;
-  }
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 1);
   const int n = this->n(), d = dim();
   Eigen::MatrixXd dmono(n, d);
   for (int m = 0; m < n; ++m)
@@ -104,18 +89,7 @@ Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::hessians(const Eigen::VectorXd& xi) const {
-  if (type() == ElementType::Pyramid) {
-    const auto [h, u, v] = collapse(xi);
-    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(5, 9);
-    for (int i = 0; i < 4; ++i) {
-      const double ab = k_base_sign[i][0] * k_base_sign[i][1] / (4 * h);
-      H(i, 1) = H(i, 3) = ab;                  // ∂²/∂ξ∂η
-      H(i, 2) = H(i, 6) = ab * v;              // ∂²/∂ξ∂ζ
-      H(i, 5) = H(i, 7) = ab * u;              // ∂²/∂η∂ζ
-      H(i, 8) = 2 * ab * u * v;                // ∂²/∂ζ²
-    }
-    return H;
-  }
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 2);
   const int n = this->n(), d = dim();
   Eigen::MatrixXd ddmono(n, d * d);
   for (int m = 0; m < n; ++m)

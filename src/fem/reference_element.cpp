@@ -25,14 +25,18 @@ Eigen::MatrixXd from_lattice(const std::array<std::array<int, D>, N>& lattice, i
   return X;
 }
 
-// Gmsh's prism (P1, and the complete 18-node P2: type 13) and linear pyramid (type 7), as
+// Gmsh's prism (P1, and the complete 18-node P2: type 13) and pyramid (P1: 7, P2: 14), as
 // gmsh::model::mesh::getElementProperties gives them: the triangle (u, v) × w ∈ [−1, 1]; the
 // base [−1, 1]² at w = 0 with the apex at (0, 0, 1). P2 prism: corners, the edges (0 1) (0 2)
 // (0 3) (1 2) (1 4) (2 5) (3 4) (3 5) (4 5), the quadrilateral faces (0 1 4 3) (0 2 5 3) (1 2 5 4).
 constexpr double k_prism2[18][3] = {{0, 0, -1},  {1, 0, -1},  {0, 1, -1},  {0, 0, 1},   {1, 0, 1},   {0, 1, 1},
                                     {.5, 0, -1}, {0, .5, -1}, {0, 0, 0},   {.5, .5, -1}, {1, 0, 0},   {0, 1, 0},
                                     {.5, 0, 1},  {0, .5, 1},  {.5, .5, 1}, {.5, 0, 0},  {0, .5, 0},  {.5, .5, 0}};
-constexpr double k_pyramid1[5][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, 1}};
+// P2 pyramid (type 14): corners, the edges (0 1) (0 3) (0 4) (1 2) (1 4) (2 3) (2 4) (3 4), the
+// base's centre.
+constexpr double k_pyramid2[14][3] = {{-1, -1, 0}, {1, -1, 0},    {1, 1, 0},    {-1, 1, 0}, {0, 0, 1},
+                                      {0, -1, 0},  {-1, 0, 0},    {-.5, -.5, .5}, {1, 0, 0},  {.5, -.5, .5},
+                                      {0, 1, 0},   {.5, .5, .5},  {-.5, .5, .5}, {0, 0, 0}};
 
 Eigen::MatrixXd table_nodes(const double (*x)[3], int n) {
   Eigen::MatrixXd X(3, n);
@@ -71,7 +75,7 @@ Eigen::MatrixXd gmsh_nodes(ElementType type, int p) {
       return tables[static_cast<std::size_t>(p - 1)];
     }
     case ElementType::Prism: return table_nodes(k_prism2, n_nodes_of(type, p));
-    case ElementType::Pyramid: return table_nodes(k_pyramid1, 5);
+    case ElementType::Pyramid: return table_nodes(k_pyramid2, n_nodes_of(type, p));
   }
   return {};
 }

@@ -25,12 +25,17 @@ const ShapeTable& validity_samples(ElementType type, int order) {
   auto& slot = cache[{type, order}];
   if (!slot) {
     const auto& rule = quadrature_rule(type, metric_quadrature_degree(type, order));
-    // A pyramid's apex has no gradient: its samples are the base corners, where det A is least
-    // (detail::pyramid_min_det).
-    const Eigen::MatrixXd nodes = type == ElementType::Pyramid ? Eigen::MatrixXd(reference_element(type, order).nodes.leftCols(4))
-                                                               : reference_element(type, order).nodes;
-    // det A is constant on linear simplices; elsewhere add the order-2p lattice.
-    const bool dense = type != ElementType::Pyramid && (order > 1 || !is_simplex(type));
+    // A pyramid's apex has no gradient: its nodes but the apex (the linear pyramid's least
+    // det A is at its base corners, detail::pyramid_min_det).
+    const Eigen::MatrixXd& all = reference_element(type, order).nodes;
+    Eigen::MatrixXd nodes = all;
+    if (type == ElementType::Pyramid) {
+      nodes.resize(3, all.cols() - 1);
+      nodes << all.leftCols(4), all.rightCols(all.cols() - 5);
+    }
+    // det A is constant on linear simplices; elsewhere add the order-2p lattice (pyramids:
+    // order ≥ 2, the collapsed box's lattice below the apex).
+    const bool dense = type == ElementType::Pyramid ? order > 1 : (order > 1 || !is_simplex(type));
     Eigen::MatrixXd extra = dense ? detail::unit_lattice(type, 2 * order) : Eigen::MatrixXd(nodes.rows(), 0);
     if (is_tensor(type)) extra = (2.0 * extra.array() - 1.0).matrix();  // tensor cells live on [−1, 1]^d
     if (type == ElementType::Prism) extra.row(2) = (2.0 * extra.row(2).array() - 1.0).matrix();  // ζ ∈ [−1, 1]

@@ -84,6 +84,10 @@ std::uint8_t cell_type_code(const CellBlock& b) {
 }  // namespace
 
 void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<std::string, std::vector<double>>& cell_data) {
+  for (const CellBlock& b : mesh.cells)
+    if (b.type == ElementType::Pyramid && b.order > 1)
+      throw InputError("VTU cannot hold pyramids of order " + std::to_string(b.order) +
+                       ": VTK 9.1 has no cell class for VTK_LAGRANGE_PYRAMID (74); write .msh instead");
   const std::size_t n_cells = mesh.n_cells();
   for (const auto& [name, values] : cell_data)
     MESHMORPH_CHECK(values.size() == n_cells, "write_vtu: cell_data '" + name + "' has " + std::to_string(values.size()) +

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/quadrature.h"
 #include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/validity.h"
@@ -185,6 +186,29 @@ TEST(BezierValidity, PyramidMinimumIsAtTheBaseCorners) {
   Eigen::MatrixXd X = reference_element(ElementType::Pyramid, 1).nodes;
   X.col(2) << -0.5, -0.5, 0.0;  // corner 2 folded past the diagonal 1–3
   EXPECT_LE(min_jacobian_det(ElementType::Pyramid, 1, X), 0.0);
+}
+
+
+// Quadratic pyramids: det A is a polynomial in the collapsed coordinates; random curved
+// pyramids negative anywhere on a fine set of points are found invalid, and straight ones
+// valid.
+TEST(BezierValidity, NoFoldOfAQuadraticPyramidEscapesTheBounds) {
+  const Eigen::MatrixXd& ref = reference_element(ElementType::Pyramid, 2).nodes;
+  EXPECT_GT(min_jacobian_det(ElementType::Pyramid, 2, ref), 0.0);
+  const ShapeTable fine = tabulate(ElementType::Pyramid, 2, Eigen::MatrixXd(quadrature_rule(ElementType::Pyramid, 16).points));
+  std::srand(13);
+  int folded = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double amplitude = 0.05 + 0.3 * (trial % 10) / 10.0;
+    const Eigen::MatrixXd X = ref + amplitude * Eigen::MatrixXd::Random(3, 14);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int q = 0; q < fine.n_points(); ++q) lowest = std::min(lowest, Eigen::Matrix3d(jacobian(X, fine, q)).determinant());
+    if (lowest < 0.0) {
+      ++folded;
+      EXPECT_LE(min_jacobian_det(ElementType::Pyramid, 2, X), 0.0) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(folded, 0);
 }
 
 }  // namespace

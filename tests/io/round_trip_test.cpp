@@ -85,7 +85,7 @@ std::vector<Case> all_cases() {
   std::vector<Case> cases;
   for (const ElementType t : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron, ElementType::Hexahedron,
                               ElementType::Prism, ElementType::Pyramid})
-    for (int p = 1; p <= max_order_of(t); ++p)
+    for (int p = 1; p <= (t == ElementType::Pyramid ? 1 : max_order_of(t)); ++p)  // (P2 pyramids: no VTU)
       for (const bool binary : {false, true}) cases.emplace_back(t, p, binary);
   return cases;
 }
@@ -152,6 +152,19 @@ TEST(MeshRoundTrip, MixedCellsInEveryFormat) {
   }
   ASSERT_EQ(r.facets.size(), 2u);
   for (std::size_t f = 0; f < 2; ++f) EXPECT_EQ(r.facets[f].nodes, m.facets[f].nodes);
+}
+
+// P2 pyramids: MSH 4.1 and 2.2 bit for bit; VTU refuses them (VTK 9.1 has no cell class for
+// them) and leaves no file.
+TEST(MeshRoundTrip, QuadraticPyramidsInMshNotVtu) {
+  Mesh m = structured_mesh(ElementType::Pyramid, 2, 2);
+  m.x = m.x / 3.0;
+  for (const auto format : {MeshFormat::Msh41, MeshFormat::Msh22})
+    for (const bool binary : {false, true})
+      test::expect_meshes_equal(m, round_trip(m, "pyramid2.msh", format, binary), {.node_tags = true, .entities = false});
+  const fs::path p = scratch("pyramid2.vtu");
+  EXPECT_THROW(write_mesh(p, m), InputError);
+  EXPECT_FALSE(fs::exists(p));
 }
 
 TEST(MeshRoundTrip, MeditRejectsCurvedCellsAndLeavesNoFile) {

@@ -24,10 +24,10 @@ inline std::vector<ElementCase> all_cell_cases() {
   return out;
 }
 
-/// Prisms 1–2 and pyramids 1: a second instantiation of the sweeps that hold for any cell
+/// Prisms and pyramids 1–2: a second instantiation of the sweeps that hold for any cell
 /// (those written for simplices and tensor cells only keep all_cell_cases).
 inline std::vector<ElementCase> prism_pyramid_cases() {
-  return {{ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}};
+  return {{ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}, {ElementType::Pyramid, 2}};
 }
 
 inline std::string case_name(const ElementCase& c) { return std::string(name_of(c.type)) + "_p" + std::to_string(c.order); }

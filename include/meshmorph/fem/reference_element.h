@@ -26,7 +26,7 @@ struct ReferenceElement {
 
 /// The shared reference element of (type, order); throws std::invalid_argument outside
 /// orders 1–4 (simplices, lines) / 1–3 (tensor cells; order 4 is also available) / 1–2
-/// (prisms: the complete 18-node P2 prism) / 1 (pyramids).
+/// (prisms: the complete 18-node P2 prism; pyramids: Gmsh's 14-node P2 pyramid).
 const ReferenceElement& reference_element(ElementType type, int order);
 
 /// Weights of the corner (linear/multilinear) shape functions at reference point `xi`:

@@ -10,7 +10,8 @@
 namespace meshmorph::detail {
 
 /// The regular lattice of order m on the unit simplex, the unit box [0, 1]^d or the unit
-/// triangle × [0, 1] (prisms) (dim × N, x fastest): the validity samples' order-2p lattice, and the points whose values give the
+/// triangle × [0, 1] (prisms) (dim × N, x fastest); on pyramids, the lattice of the collapsed
+/// box (u, v, ζ) ∈ [−1, 1]² × [0, 1] below the apex, as points (u(1 − ζ), v(1 − ζ), ζ): the validity samples' order-2p lattice, and the points whose values give the
 /// Bernstein coefficients of det A.
 Eigen::MatrixXd unit_lattice(ElementType type, int m);
 
@@ -41,7 +42,8 @@ Eigen::VectorXd det_bernstein_coefficients(ElementType type, int order, const Ei
 /// halves examined alike: a corner coefficient ≤ 0, or det A ≤ 0 where the least coefficient
 /// lies, is returned; down to 2^−(6d) of its size, cells still undecided there are taken as
 /// valid (what sampling alone said).
-/// Prisms and pyramids go to prism_min_det; pyramids return `sampled` (pyramid_min_det).
+/// Prisms go to prism_min_det; linear pyramids return `sampled` (pyramid_min_det), others go
+/// to pyramid_bounds_min_det.
 double bezier_min_det(ElementType type, int order, const Eigen::MatrixXd& X, double sampled);
 
 /// The degrees of det A on a prism of order p: 3p − 2 (total) in (ξ, η), 3p − 1 in ζ.
@@ -68,8 +70,14 @@ double prism_min_det(int order, const Eigen::MatrixXd& X, double sampled);
 /// columns at most once, det A = det(a_ξ, a_η, a_ζ) + v det(c, a_η, a_ζ) + u det(a_ξ, c, a_ζ)
 /// + u v det(a_ξ, a_η, c): bilinear in (u, v) and independent of ζ. Its least value over the
 /// pyramid is at (u, v) = (±1, ±1), the four base corners, which are validity samples: the
-/// sampled minimum is exact (a certificate, as Johnen and Geuzaine's pyramidal bounds in the
-/// collapsed coordinates give for order 1).
+/// sampled minimum is exact (a certificate). This returns that minimum, det A at the corners.
 double pyramid_min_det(const Eigen::MatrixXd& X);
+
+/// The lowest det A of one pyramid of order p ≥ 2 whose samples are all positive. With
+/// u = ξ/(1 − ζ), v = η/(1 − ζ), det A = det(X G(u, v, ζ)) (pyramid_collapsed_gradients) is a
+/// polynomial on the box [−1, 1]² × [0, 1], of degree 3p − 1 in u and v and 3(p − 1) in ζ,
+/// bounded by its tensor Bernstein coefficients: all positive: `sampled`; a lattice value ≤ 0 (the lattice holds
+/// the apex): that value; else the box is halved as prism_min_det halves prisms.
+double pyramid_bounds_min_det(int order, const Eigen::MatrixXd& X, double sampled);
 
 }  // namespace meshmorph::detail

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -10,6 +11,7 @@
 #include <Eigen/LU>
 
 #include "fem/detail/bezier_validity.h"
+#include "fem/detail/pyramid_functions.h"
 #include "meshmorph/fem/lagrange_basis.h"
 
 namespace meshmorph::detail {
@@ -132,6 +134,107 @@ double prism_min_det(int order, const Eigen::MatrixXd& X, double sampled) {
     if (v.minCoeff() <= 0.0) return v.minCoeff();
     if (coefficients(e, v).minCoeff() > 0.0 || s.depth >= k_max_depth) continue;
     for (const Piece& h : halves(s)) stack.push_back(h);
+  }
+  return sampled;
+}
+
+namespace {
+
+// det A of a pyramid of order p as a polynomial on the box (u, v, ζ) ∈ [−1, 1]² × [0, 1]:
+// degrees 3p − 1 in u and v, 3(p − 1) in ζ (≥ 1); the inverses of the segments' Bernstein
+// polynomials at their lattices, and the nodal basis' coefficients on the pyramidal functions.
+struct PyramidExpansion {
+  std::array<int, 3> q{};
+  std::array<Eigen::MatrixXd, 3> inv;
+  Eigen::MatrixXd nodal;  ///< n × n: N_a = Σ_m nodal(m, a) f_m
+};
+
+const PyramidExpansion& pyramid_expansion(int order) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<PyramidExpansion>> cache;
+  std::lock_guard lock(mutex);
+  auto& slot = cache[order];
+  if (!slot) {
+    auto e = std::make_unique<PyramidExpansion>();
+    e->q = {3 * order - 1, 3 * order - 1, std::max(1, 3 * (order - 1))};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const int q = e->q[k];
+      Eigen::MatrixXd L(q + 1, q + 1);
+      for (int i = 0; i <= q; ++i)
+        for (int j = 0; j <= q; ++j) L(i, j) = binomial(q, j) * std::pow(double(i) / q, j) * std::pow(1.0 - double(i) / q, q - j);
+      e->inv[k] = L.inverse();
+    }
+    const Eigen::MatrixXd& nodes = lagrange_basis(ElementType::Pyramid, order).reference().nodes;
+    Eigen::MatrixXd V(nodes.cols(), nodes.cols());
+    for (Eigen::Index b = 0; b < nodes.cols(); ++b) V.row(b) = pyramid_functions(order, nodes.col(b), 0).transpose();
+    e->nodal = V.inverse();
+    slot = std::move(e);
+  }
+  return *slot;
+}
+
+struct Box {
+  Eigen::Vector3d lo{-1, -1, 0}, hi{1, 1, 1};
+  int depth = 0;
+};
+
+// det A at the box's lattice (u fastest), NaN as −∞.
+Eigen::VectorXd box_dets(const PyramidExpansion& e, int order, const Eigen::MatrixXd& X, const Box& b) {
+  const int mu = e.q[0] + 1, mv = e.q[1] + 1, mz = e.q[2] + 1;
+  const Eigen::MatrixXd XN = X * e.nodal.transpose();  // X N_a = (X nodalᵀ) f
+  Eigen::VectorXd v(mu * mv * mz);
+  for (int k = 0, p = 0; k < mz; ++k)
+    for (int j = 0; j < mv; ++j)
+      for (int i = 0; i < mu; ++i, ++p) {
+        const Eigen::Vector3d t(double(i) / e.q[0], double(j) / e.q[1], double(k) / e.q[2]);
+        const Eigen::Vector3d uvz = b.lo + t.cwiseProduct(b.hi - b.lo);
+        const double det = Eigen::Matrix3d(XN * pyramid_collapsed_gradients(order, uvz)).determinant();
+        v(p) = det > -std::numeric_limits<double>::infinity() ? det : -std::numeric_limits<double>::infinity();
+      }
+  return v;
+}
+
+// The tensor Bernstein coefficients of lattice values v, axis by axis.
+Eigen::VectorXd box_coefficients(const PyramidExpansion& e, const Eigen::VectorXd& v) {
+  Eigen::VectorXd c = v, next(v.size());
+  Eigen::Index stride = 1;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const int m = e.q[axis] + 1;
+    for (Eigen::Index base = 0; base < c.size(); ++base) {
+      if ((base / stride) % m != 0) continue;
+      for (int i = 0; i < m; ++i) {
+        double sum = 0.0;
+        for (int k = 0; k < m; ++k) sum += e.inv[axis](i, k) * c(base + k * stride);
+        next(base + i * stride) = sum;
+      }
+    }
+    c.swap(next);
+    stride *= m;
+  }
+  return c;
+}
+
+}  // namespace
+
+double pyramid_bounds_min_det(int order, const Eigen::MatrixXd& X, double sampled) {
+  const PyramidExpansion& e = pyramid_expansion(order);
+  constexpr int k_max_depth = 18, k_budget = 512;
+  std::vector<Box> stack{Box{}};
+  for (int examined = 0; !stack.empty() && examined < k_budget; ++examined) {
+    const Box b = stack.back();
+    stack.pop_back();
+    const Eigen::VectorXd v = box_dets(e, order, X, b);
+    if (v.minCoeff() <= 0.0) return v.minCoeff();
+    if (box_coefficients(e, v).minCoeff() > 0.0 || b.depth >= k_max_depth) continue;
+    // Halve the longest side (ζ counts double: the box is 2 × 2 × 1).
+    const Eigen::Vector3d side = (b.hi - b.lo).cwiseProduct(Eigen::Vector3d(1, 1, 2));
+    Eigen::Index axis = 0;
+    side.maxCoeff(&axis);
+    Box low = b, high = b;
+    low.depth = high.depth = b.depth + 1;
+    low.hi(axis) = high.lo(axis) = 0.5 * (b.lo(axis) + b.hi(axis));
+    stack.push_back(low);
+    stack.push_back(high);
   }
   return sampled;
 }
