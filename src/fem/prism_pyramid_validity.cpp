@@ -23,6 +23,34 @@ double binomial(int n, int k) {
   return b;
 }
 
+// The inverse of the Bernstein polynomials of degree q on [0, 1] at the points i/q: lattice
+// values → coefficients.
+Eigen::MatrixXd segment_inverse(int q) {
+  Eigen::MatrixXd L(q + 1, q + 1);
+  for (int i = 0; i <= q; ++i)
+    for (int k = 0; k <= q; ++k) L(i, k) = binomial(q, k) * std::pow(double(i) / q, k) * std::pow(1.0 - double(i) / q, q - k);
+  return L.inverse();
+}
+
+// The least det A that bisection finds, from `root`: det A at a piece's lattice (`dets`) ≤ 0
+// anywhere is returned; pieces whose coefficients (`coefficients`) are all positive are
+// valid; others are halved (`halves`), down to 18 halvings and 512 pieces, after which
+// `sampled` stands.
+template <class Cell, class Dets, class Coefficients, class Halves>
+double bisected_min(const Cell& root, Dets dets, Coefficients coefficients, Halves halves, double sampled) {
+  constexpr int k_max_depth = 18, k_budget = 512;
+  std::vector<Cell> stack{root};
+  for (int examined = 0; !stack.empty() && examined < k_budget; ++examined) {
+    const Cell s = stack.back();
+    stack.pop_back();
+    const auto v = dets(s);
+    if (v.minCoeff() <= 0.0) return v.minCoeff();
+    if (coefficients(v).minCoeff() > 0.0 || s.depth >= k_max_depth) continue;
+    for (const Cell& h : halves(s)) stack.push_back(h);
+  }
+  return sampled;
+}
+
 // The product lattice of a prism of order p and the inverses of the Bernstein polynomials'
 // values there, on the triangle (degree qa) and on the segment (degree qb).
 struct PrismExpansion {
@@ -47,10 +75,7 @@ std::unique_ptr<PrismExpansion> make_expansion(int order) {
       M(i, a) = binomial(qa, a1) * binomial(qa - a1, a2) * std::pow(l1, a1) * std::pow(l2, a2) * std::pow(l0, qa - a1 - a2);
     }
   e->tri_inv = M.inverse();
-  Eigen::MatrixXd L(qb + 1, qb + 1);
-  for (int i = 0; i <= qb; ++i)
-    for (int k = 0; k <= qb; ++k) L(i, k) = binomial(qb, k) * std::pow(double(i) / qb, k) * std::pow(1.0 - double(i) / qb, qb - k);
-  e->line_inv = L.inverse();
+  e->line_inv = segment_inverse(qb);
   return e;
 }
 
@@ -123,19 +148,11 @@ Eigen::VectorXd prism_det_coefficients(int order, const Eigen::MatrixXd& X) {
 double prism_min_det(int order, const Eigen::MatrixXd& X, double sampled) {
   const PrismExpansion& e = expansion(order);
   const LagrangeBasis& basis = lagrange_basis(ElementType::Prism, order);
-  constexpr int k_max_depth = 18, k_budget = 512;
   Piece root;
   root.tri << 0, 1, 0, 0, 0, 1;
-  std::vector<Piece> stack{root};
-  for (int examined = 0; !stack.empty() && examined < k_budget; ++examined) {
-    const Piece s = stack.back();
-    stack.pop_back();
-    const Eigen::MatrixXd v = piece_dets(e, basis, X, s);
-    if (v.minCoeff() <= 0.0) return v.minCoeff();
-    if (coefficients(e, v).minCoeff() > 0.0 || s.depth >= k_max_depth) continue;
-    for (const Piece& h : halves(s)) stack.push_back(h);
-  }
-  return sampled;
+  return bisected_min(
+      root, [&](const Piece& s) { return piece_dets(e, basis, X, s); },
+      [&](const Eigen::MatrixXd& v) { return coefficients(e, v); }, halves, sampled);
 }
 
 namespace {
@@ -157,13 +174,7 @@ const PyramidExpansion& pyramid_expansion(int order) {
   if (!slot) {
     auto e = std::make_unique<PyramidExpansion>();
     e->q = {3 * order - 1, 3 * order - 1, std::max(1, 3 * (order - 1))};
-    for (std::size_t k = 0; k < 3; ++k) {
-      const int q = e->q[k];
-      Eigen::MatrixXd L(q + 1, q + 1);
-      for (int i = 0; i <= q; ++i)
-        for (int j = 0; j <= q; ++j) L(i, j) = binomial(q, j) * std::pow(double(i) / q, j) * std::pow(1.0 - double(i) / q, q - j);
-      e->inv[k] = L.inverse();
-    }
+    for (std::size_t k = 0; k < 3; ++k) e->inv[k] = segment_inverse(e->q[k]);
     const Eigen::MatrixXd& nodes = lagrange_basis(ElementType::Pyramid, order).reference().nodes;
     Eigen::MatrixXd V(nodes.cols(), nodes.cols());
     for (Eigen::Index b = 0; b < nodes.cols(); ++b) V.row(b) = pyramid_functions(order, nodes.col(b), 0).transpose();
@@ -218,25 +229,18 @@ Eigen::VectorXd box_coefficients(const PyramidExpansion& e, const Eigen::VectorX
 
 double pyramid_bounds_min_det(int order, const Eigen::MatrixXd& X, double sampled) {
   const PyramidExpansion& e = pyramid_expansion(order);
-  constexpr int k_max_depth = 18, k_budget = 512;
-  std::vector<Box> stack{Box{}};
-  for (int examined = 0; !stack.empty() && examined < k_budget; ++examined) {
-    const Box b = stack.back();
-    stack.pop_back();
-    const Eigen::VectorXd v = box_dets(e, order, X, b);
-    if (v.minCoeff() <= 0.0) return v.minCoeff();
-    if (box_coefficients(e, v).minCoeff() > 0.0 || b.depth >= k_max_depth) continue;
-    // Halve the longest side (ζ counts double: the box is 2 × 2 × 1).
-    const Eigen::Vector3d side = (b.hi - b.lo).cwiseProduct(Eigen::Vector3d(1, 1, 2));
+  // Halve the longest side (ζ counts double: the box is 2 × 2 × 1).
+  const auto split = [](const Box& b) {
     Eigen::Index axis = 0;
-    side.maxCoeff(&axis);
-    Box low = b, high = b;
-    low.depth = high.depth = b.depth + 1;
-    low.hi(axis) = high.lo(axis) = 0.5 * (b.lo(axis) + b.hi(axis));
-    stack.push_back(low);
-    stack.push_back(high);
-  }
-  return sampled;
+    (b.hi - b.lo).cwiseProduct(Eigen::Vector3d(1, 1, 2)).maxCoeff(&axis);
+    std::array<Box, 2> h{b, b};
+    h[0].depth = h[1].depth = b.depth + 1;
+    h[0].hi(axis) = h[1].lo(axis) = 0.5 * (b.lo(axis) + b.hi(axis));
+    return h;
+  };
+  return bisected_min(
+      Box{}, [&](const Box& b) { return box_dets(e, order, X, b); },
+      [&](const Eigen::VectorXd& v) { return box_coefficients(e, v); }, split, sampled);
 }
 
 double pyramid_min_det(const Eigen::MatrixXd& X) {
