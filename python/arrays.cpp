@@ -61,7 +61,7 @@ std::vector<CellBlock> blocks_of(const py::list& list, std::size_t n_nodes, int 
     const std::string type = entry<std::string>(d, "type", where, "a string");
     bool known = false;
     for (ElementType t : {ElementType::Point, ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral,
-                          ElementType::Tetrahedron, ElementType::Hexahedron})
+                          ElementType::Tetrahedron, ElementType::Hexahedron, ElementType::Prism, ElementType::Pyramid})
       if (name_of(t) == type) b.type = t, known = true;
     if (!known || topological_dim(b.type) < min_dim || topological_dim(b.type) > max_dim)
       throw InputError(where + ".type: \"" + type + "\" is not a " + (min_dim == max_dim ? "cell" : "facet") +

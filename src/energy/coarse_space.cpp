@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "meshmorph/error.h"
+#include "meshmorph/fem/lagrange_basis.h"
 #include "meshmorph/fem/reference_element.h"
 
 namespace meshmorph {
@@ -23,6 +24,10 @@ struct Hats {
 Hats hats_at(const ReferenceElement& ref, int corners, const Eigen::VectorXd& xi) {
   const int dim = ref.dim;
   Hats h{Eigen::VectorXd(corners), Eigen::MatrixXd(corners, dim)};
+  if (ref.type == ElementType::Prism || ref.type == ElementType::Pyramid) {  // their own P1 bases
+    const LagrangeBasis& p1 = lagrange_basis(ref.type, 1);
+    return {p1.values(xi), p1.gradients(xi)};
+  }
   if (is_simplex(ref.type)) {
     // Barycentric coordinates: [1; ξ] = C λ with C's columns [1; corner v].
     Eigen::MatrixXd C(dim + 1, corners);

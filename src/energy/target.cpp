@@ -10,6 +10,7 @@
 #include "energy/detail/element_kernel.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/reference_element.h"
 #include "meshmorph/quality/element_quality.h"
 
 namespace meshmorph {
@@ -28,16 +29,16 @@ MatT<d> ideal_jacobian(ElementType type, double volume) {
   // W = s·W₀ with W₀ the unit-edge regular simplex or [−1, 1]^d → cube map of quality/, and s
   // such that ∫_ref |det W| = s^d · det W₀ · |ref| = volume (|ref| = 1/d! or 2^d).
   const MatT<d> W0 = ideal_jacobian(type);
-  const double ref_measure = is_simplex(type) ? (d == 2 ? 0.5 : 1.0 / 6.0) : (d == 2 ? 4.0 : 8.0);
+  const double ref_measure = reference_measure(type);
   return std::pow(volume / (ref_measure * W0.determinant()), 1.0 / d) * W0;
 }
 
-// Volume of the unit-size ideal cell: the regular simplex of unit edge (W₀ of quality/ maps
-// the reference simplex onto it), the unit square or cube.
+// Volume of the unit-size ideal cell: the regular simplex, prism or pyramid of unit edges (W₀
+// of quality/ maps the reference cell onto it), the unit square or cube.
 template <int d>
 double unit_volume(ElementType type) {
-  if (!is_simplex(type)) return 1.0;
-  return (d == 2 ? 0.5 : 1.0 / 6.0) * ideal_jacobian(type).determinant();
+  if (is_tensor(type)) return 1.0;
+  return reference_measure(type) * ideal_jacobian(type).determinant();
 }
 
 template <int d>

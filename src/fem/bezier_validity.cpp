@@ -279,7 +279,13 @@ Eigen::MatrixXd unit_lattice(ElementType type, int m) {
   for (int k = 0; k <= (dim > 2 ? m : 0); ++k)
     for (int j = 0; j <= m; ++j)
       for (int i = 0; i <= m; ++i)
-        if (!is_simplex(type) || i + j + k <= m) pts.emplace_back(double(i) / m, double(j) / m, double(k) / m);
+        if (type == ElementType::Prism ? i + j <= m : (!is_simplex(type) || i + j + k <= m)) pts.emplace_back(double(i) / m, double(j) / m, double(k) / m);
+  if (type == ElementType::Pyramid) {  // (u, v, ζ) of [0, 1]³ → (ξ, η, ζ), below the apex
+    std::vector<Eigen::Vector3d> below;
+    for (const Eigen::Vector3d& p : pts)
+      if (p(2) < 1.0) below.emplace_back((2 * p(0) - 1) * (1 - p(2)), (2 * p(1) - 1) * (1 - p(2)), p(2));
+    pts.swap(below);
+  }
   Eigen::MatrixXd X(dim, static_cast<Eigen::Index>(pts.size()));
   for (std::size_t p = 0; p < pts.size(); ++p) X.col(static_cast<Eigen::Index>(p)) = pts[p].head(dim);
   return X;
@@ -302,6 +308,7 @@ template void dets_on_grid<2>(const TensorGrid&, const Eigen::MatrixXd&, Eigen::
 template void dets_on_grid<3>(const TensorGrid&, const Eigen::MatrixXd&, Eigen::VectorXd&);
 
 bool det_needs_bounds(ElementType type, int order) {
+  if (type == ElementType::Prism || type == ElementType::Pyramid) return false;  // prism_min_det, pyramid_min_det
   if (is_simplex(type)) return order > 1;
   return !(type == ElementType::Quadrilateral && order == 1);
 }
@@ -318,6 +325,9 @@ Eigen::VectorXd det_bernstein_coefficients(ElementType type, int order, const Ei
 
 double bezier_min_det(ElementType type, int order, const Eigen::MatrixXd& X, double sampled) {
   const int dim = topological_dim(type);
+  if (type == ElementType::Prism && X.rows() == 3) return prism_min_det(order, X, sampled);
+  if (type == ElementType::Pyramid && order == 1) return sampled;  // exact at the base corners: pyramid_min_det
+  if (type == ElementType::Pyramid && X.rows() == 3) return pyramid_bounds_min_det(order, X, sampled);
   if (X.rows() != dim || !det_needs_bounds(type, order)) return sampled;
   return dim == 2 ? bezier_min_det_dim<2>(type, order, X, sampled) : bezier_min_det_dim<3>(type, order, X, sampled);
 }

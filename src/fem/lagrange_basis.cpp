@@ -7,19 +7,22 @@
 
 #include <Eigen/LU>
 
+#include "fem/detail/pyramid_functions.h"
+
 namespace meshmorph {
 namespace {
 
 // Exponents of the monomials spanning the element's space: total degree ≤ p on simplices,
-// degree ≤ p in each variable on tensor cells (lines are both).
+// degree ≤ p in each variable on tensor cells (lines are both), total degree ≤ p in (ξ, η)
+// times degree ≤ p in ζ on prisms.
 Eigen::MatrixXi monomial_exponents(ElementType type, int p, int dim) {
   std::vector<std::array<int, 3>> e;
-  const bool simplex = is_simplex(type);
+  const bool simplex = is_simplex(type), prism = type == ElementType::Prism;
   const int pz = dim > 2 ? p : 0, py = dim > 1 ? p : 0, px = dim > 0 ? p : 0;
   for (int k = 0; k <= pz; ++k)
     for (int j = 0; j <= py; ++j)
       for (int i = 0; i <= px; ++i)
-        if (!simplex || i + j + k <= p) e.push_back({i, j, k});
+        if (prism ? i + j <= p : (!simplex || i + j + k <= p)) e.push_back({i, j, k});
   Eigen::MatrixXi out(dim, static_cast<Eigen::Index>(e.size()));
   for (std::size_t m = 0; m < e.size(); ++m)
     for (int k = 0; k < dim; ++k) out(k, static_cast<Eigen::Index>(m)) = e[m][static_cast<std::size_t>(k)];
@@ -36,6 +39,12 @@ double ipow(double x, int n) {
 
 LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_element(type, order)) {
   const int n = ref_->n_nodes(), d = ref_->dim;
+  if (type == ElementType::Pyramid) {  // rational: the nodal combinations of the pyramidal functions
+    Eigen::MatrixXd V(n, n);
+    for (int b = 0; b < n; ++b) V.row(b) = detail::pyramid_functions(order, ref_->nodes.col(b), 0).transpose();
+    coeffs_ = V.fullPivLu().inverse();
+    return;
+  }
   exponents_ = monomial_exponents(type, order, d);
   Eigen::MatrixXd V(n, n);  // V(b, m) = monomial m at node b
   for (int b = 0; b < n; ++b)
@@ -48,6 +57,7 @@ LagrangeBasis::LagrangeBasis(ElementType type, int order) : ref_(&reference_elem
 }
 
 Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 0);
   const int n = this->n(), d = dim();
   Eigen::VectorXd mono(n);
   for (int m = 0; m < n; ++m) {
@@ -59,6 +69,7 @@ Eigen::VectorXd LagrangeBasis::values(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 1);
   const int n = this->n(), d = dim();
   Eigen::MatrixXd dmono(n, d);
   for (int m = 0; m < n; ++m)
@@ -78,6 +89,7 @@ Eigen::MatrixXd LagrangeBasis::gradients(const Eigen::VectorXd& xi) const {
 }
 
 Eigen::MatrixXd LagrangeBasis::hessians(const Eigen::VectorXd& xi) const {
+  if (type() == ElementType::Pyramid) return coeffs_.transpose() * detail::pyramid_functions(order(), xi, 2);
   const int n = this->n(), d = dim();
   Eigen::MatrixXd ddmono(n, d * d);
   for (int m = 0; m < n; ++m)

@@ -89,6 +89,39 @@ QuadratureRule tensor_rule(QuadratureRule q, const Rule1d& g, int n, int dim) {
   return q;
 }
 
+QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family);
+
+// Prism: the triangle's rule of the same degree times n Gauss points in ζ. Pyramid: the
+// collapse ξ = u(1 − ζ), η = v(1 − ζ) of the cube [−1, 1]² × [0, 1], Gauss in u and v and
+// Gauss–Jacobi of weight (1 − ζ)² (the collapse's Jacobian) in ζ, with one point more in ζ,
+// whose integrands gain the factors (1 − ζ) of ξ and η; exact for polynomials of degree
+// `degree` in (u, v, ζ) and so for products of the rational P1 basis and its gradients.
+QuadratureRule prism_or_pyramid_rule(QuadratureRule q, int n) {
+  const auto g = gauss_jacobi(n, 0);
+  if (q.type == ElementType::Prism) {
+    const QuadratureRule tri = make_rule(ElementType::Triangle, q.degree, QuadratureFamily::Gauss);
+    q.points.resize(3, tri.n_points() * n);
+    q.weights.resize(tri.n_points() * n);
+    for (int k = 0, p = 0; k < n; ++k)
+      for (int i = 0; i < tri.n_points(); ++i, ++p) {
+        q.points.col(p) << tri.points.col(i), 2 * g.x(k) - 1;
+        q.weights(p) = tri.weights(i) * 2 * g.w(k);
+      }
+    return q;
+  }
+  const auto gz = gauss_jacobi(n + 1, 2);
+  q.points.resize(3, n * n * (n + 1));
+  q.weights.resize(n * n * (n + 1));
+  for (int k = 0, p = 0; k <= n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, ++p) {
+        const double h = 1 - gz.x(k);
+        q.points.col(p) << (2 * g.x(i) - 1) * h, (2 * g.x(j) - 1) * h, gz.x(k);
+        q.weights(p) = 4 * g.w(i) * g.w(j) * gz.w(k);
+      }
+  return q;
+}
+
 QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) {
   QuadratureRule q{type, degree, {}, {}};
   const int n = points_for_degree(std::max(degree, 0));
@@ -98,7 +131,8 @@ QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) 
     q.weights = Eigen::VectorXd::Ones(1);
     return q;
   }
-  if (!is_simplex(type) || type == ElementType::Line) {  // Gauss–Legendre (–Lobatto) on [−1, 1]^d
+  if (type == ElementType::Prism || type == ElementType::Pyramid) return prism_or_pyramid_rule(q, n);
+  if (is_tensor(type) || type == ElementType::Line) {  // Gauss–Legendre (–Lobatto) on [−1, 1]^d
     const bool lobatto = family == QuadratureFamily::Lobatto;
     const int m = lobatto ? std::max(2, (std::max(degree, 0) + 4) / 2) : n;  // Lobatto: exact to 2m − 3
     const auto g = lobatto ? gauss_lobatto(m) : gauss_jacobi(m, 0);
@@ -143,7 +177,7 @@ QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) 
 
 const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family) {
   MESHMORPH_CHECK(degree >= 0 && degree <= 40, "quadrature degree out of range");
-  if (is_simplex(type) && type != ElementType::Line) family = QuadratureFamily::Gauss;  // one rule per simplex
+  if (!is_tensor(type) && type != ElementType::Line) family = QuadratureFamily::Gauss;  // one rule per simplex, prism, pyramid
   static std::mutex mutex;
   static std::map<std::tuple<ElementType, int, QuadratureFamily>, std::unique_ptr<QuadratureRule>> cache;
   std::lock_guard lock(mutex);
@@ -155,7 +189,7 @@ const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFa
 int metric_quadrature_degree(ElementType type, int order) {
   if (type == ElementType::Point) return 0;
   if (is_simplex(type)) return order == 1 && type != ElementType::Line ? 1 : 2 * order;
-  return 2 * order + 1;
+  return 2 * order + 1;  // tensor cells, prisms, pyramids
 }
 
 }  // namespace meshmorph

@@ -25,6 +25,25 @@ Eigen::MatrixXd from_lattice(const std::array<std::array<int, D>, N>& lattice, i
   return X;
 }
 
+// Gmsh's prism (P1, and the complete 18-node P2: type 13) and pyramid (P1: 7, P2: 14), as
+// gmsh::model::mesh::getElementProperties gives them: the triangle (u, v) × w ∈ [−1, 1]; the
+// base [−1, 1]² at w = 0 with the apex at (0, 0, 1). P2 prism: corners, the edges (0 1) (0 2)
+// (0 3) (1 2) (1 4) (2 5) (3 4) (3 5) (4 5), the quadrilateral faces (0 1 4 3) (0 2 5 3) (1 2 5 4).
+constexpr double k_prism2[18][3] = {{0, 0, -1},  {1, 0, -1},  {0, 1, -1},  {0, 0, 1},   {1, 0, 1},   {0, 1, 1},
+                                    {.5, 0, -1}, {0, .5, -1}, {0, 0, 0},   {.5, .5, -1}, {1, 0, 0},   {0, 1, 0},
+                                    {.5, 0, 1},  {0, .5, 1},  {.5, .5, 1}, {.5, 0, 0},  {0, .5, 0},  {.5, .5, 0}};
+// P2 pyramid (type 14): corners, the edges (0 1) (0 3) (0 4) (1 2) (1 4) (2 3) (2 4) (3 4), the
+// base's centre.
+constexpr double k_pyramid2[14][3] = {{-1, -1, 0}, {1, -1, 0},    {1, 1, 0},    {-1, 1, 0}, {0, 0, 1},
+                                      {0, -1, 0},  {-1, 0, 0},    {-.5, -.5, .5}, {1, 0, 0},  {.5, -.5, .5},
+                                      {0, 1, 0},   {.5, .5, .5},  {-.5, .5, .5}, {0, 0, 0}};
+
+Eigen::MatrixXd table_nodes(const double (*x)[3], int n) {
+  Eigen::MatrixXd X(3, n);
+  for (int j = 0; j < n; ++j) X.col(j) << x[j][0], x[j][1], x[j][2];
+  return X;
+}
+
 Eigen::MatrixXd gmsh_nodes(ElementType type, int p) {
   switch (type) {
     case ElementType::Point: return Eigen::MatrixXd(0, 1);
@@ -55,6 +74,8 @@ Eigen::MatrixXd gmsh_nodes(ElementType type, int p) {
                               from_lattice(k_hexahedron3, 3, false), from_lattice(k_hexahedron4, 4, false)};
       return tables[static_cast<std::size_t>(p - 1)];
     }
+    case ElementType::Prism: return table_nodes(k_prism2, n_nodes_of(type, p));
+    case ElementType::Pyramid: return table_nodes(k_pyramid2, n_nodes_of(type, p));
   }
   return {};
 }
@@ -104,12 +125,40 @@ Eigen::VectorXd corner_weights(ElementType type, const Eigen::VectorXd& xi) {
         w(i) = (1 + k_hex_sign[i][0] * xi(0)) * (1 + k_hex_sign[i][1] * xi(1)) * (1 + k_hex_sign[i][2] * xi(2)) / 8;
       return w;
     }
+    case ElementType::Prism: {
+      const double l[3] = {1 - xi(0) - xi(1), xi(0), xi(1)}, below = (1 - xi(2)) / 2, above = (1 + xi(2)) / 2;
+      return (Eigen::VectorXd(6) << l[0] * below, l[1] * below, l[2] * below, l[0] * above, l[1] * above, l[2] * above)
+          .finished();
+    }
+    case ElementType::Pyramid: {
+      // The rational P1 basis of lagrange_basis.h, (1 − w)(1 ± ξ/(1 − w))(1 ± η/(1 − w))/4 and w.
+      const double h = 1 - xi(2), u = h > 0 ? xi(0) / h : 0.0, v = h > 0 ? xi(1) / h : 0.0;
+      Eigen::VectorXd w(5);
+      for (int i = 0; i < 4; ++i) w(i) = h * (1 + k_quad_sign[i][0] * u) * (1 + k_quad_sign[i][1] * v) / 4;
+      w(4) = xi(2);
+      return w;
+    }
   }
   return {};
 }
 
+double reference_measure(ElementType type) {
+  switch (type) {
+    case ElementType::Point:
+    case ElementType::Line: return type == ElementType::Point ? 1.0 : 2.0;
+    case ElementType::Triangle: return 0.5;
+    case ElementType::Quadrilateral: return 4.0;
+    case ElementType::Tetrahedron: return 1.0 / 6.0;
+    case ElementType::Hexahedron: return 8.0;
+    case ElementType::Prism: return 1.0;
+    case ElementType::Pyramid: return 4.0 / 3.0;
+  }
+  return 0.0;
+}
+
 const ReferenceElement& reference_element(ElementType type, int order) {
-  MESHMORPH_CHECK(order >= 1 && order <= 4,
+  const bool prism_or_pyramid = type == ElementType::Prism || type == ElementType::Pyramid;
+  MESHMORPH_CHECK(order >= 1 && order <= (prism_or_pyramid ? max_order_of(type) : 4),
                   "no reference element of order " + std::to_string(order) + " for " + std::string(name_of(type)));
   // Recursive: building a cell's trace tables asks for its facets' reference elements.
   static std::recursive_mutex mutex;

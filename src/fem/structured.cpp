@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/fem/structured.h"
 
+#include <algorithm>
 #include <array>
 
 #include "meshmorph/error.h"
@@ -30,7 +31,14 @@ Mesh structured_mesh(ElementType type, int order, int n) {
   MESHMORPH_CHECK(m.dim >= 2, "structured_mesh makes cells of dimension 2 or 3");
   const int n1 = n + 1, nz = m.dim == 3 ? n1 : 1;
   const auto id = [&](int i, int j, int k) { return static_cast<std::int32_t>(i + n1 * (j + n1 * k)); };
-  m.x.resize(m.dim, static_cast<Eigen::Index>(n1) * n1 * nz);
+  // Pyramids: one more node at the centre of each cube, the apex of its six pyramids.
+  const bool pyramids = type == ElementType::Pyramid;
+  const auto centre = [&](int i, int j, int k) { return static_cast<std::int32_t>(n1 * n1 * n1 + i + n * (j + n * k)); };
+  m.x.resize(m.dim, static_cast<Eigen::Index>(n1) * n1 * nz + (pyramids ? n * n * n : 0));
+  if (pyramids)
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) m.x.col(centre(i, j, k)) << (i + 0.5) / n, (j + 0.5) / n, (k + 0.5) / n;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < n1; ++j)
       for (int i = 0; i < n1; ++i) {
@@ -64,6 +72,22 @@ Mesh structured_mesh(ElementType type, int order, int n) {
             cells.push_back(h.data(), 1);
             break;
           }
+          case ElementType::Prism: {  // the cube's two halves across the diagonal of its base
+            const std::array<std::int32_t, 6> p0{v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 0, 1), v(1, 0, 1), v(1, 1, 1)},
+                p1{v(0, 0, 0), v(1, 1, 0), v(0, 1, 0), v(0, 0, 1), v(1, 1, 1), v(0, 1, 1)};
+            cells.push_back(p0.data(), 1);
+            cells.push_back(p1.data(), 1);
+            break;
+          }
+          case ElementType::Pyramid: {  // a face of the cube each, reversed so that the apex is inside
+            const std::array<std::int32_t, 8> h{v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0),
+                                                v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)};
+            for (const auto& f : corner_facets(ElementType::Hexahedron)) {
+              const std::array<std::int32_t, 5> p{h[f[0]], h[f[3]], h[f[2]], h[f[1]], centre(i, j, k)};
+              cells.push_back(p.data(), 1);
+            }
+            break;
+          }
           default: {  // Kuhn: one tet per path 000 → 111 along the axes in each order
             static constexpr std::array<std::array<int, 3>, 6> perms{
                 {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
@@ -86,8 +110,14 @@ Mesh structured_mesh(ElementType type, int order, int n) {
   m.cells.push_back(std::move(cells));
 
   const auto topo = build_topology(m);
-  const auto ft = facet_type(type, 0);
-  CellBlock facets{ft, 1, {}, {}, {}};
+  // One facet block per facet family (prisms have triangles and quadrilaterals), in the order
+  // of the cell's facets.
+  std::vector<CellBlock> blocks;
+  for (std::size_t f = 0; f < corner_facets(type).size(); ++f) {
+    const ElementType ft = facet_type(type, static_cast<int>(f));
+    if (std::none_of(blocks.begin(), blocks.end(), [&](const CellBlock& b) { return b.type == ft; }))
+      blocks.push_back(CellBlock{ft, 1, {}, {}, {}});
+  }
   for (auto f : topo.boundary_facets) {
     const auto& where = topo.facets[static_cast<std::size_t>(f)][0];
     const auto [b, c] = topo.locate(where.cell);
@@ -98,9 +128,11 @@ Mesh structured_mesh(ElementType type, int order, int n) {
       v[i] = m.cells[b].cell(c)[local[i]];
       centroid += m.x.col(v[i]) / double(local.size());
     }
-    facets.push_back(v.data(), side_of(centroid, m.dim));
+    const ElementType ft = facet_type(type, where.local);
+    std::find_if(blocks.begin(), blocks.end(), [&](const CellBlock& blk) { return blk.type == ft; })->push_back(v.data(), side_of(centroid, m.dim));
   }
-  m.facets.push_back(std::move(facets));
+  for (auto& b : blocks)
+    if (b.n_cells() > 0) m.facets.push_back(std::move(b));
 
   m.groups.push_back({m.dim, 1, "domain"});
   const std::array<const char*, 6> names{"left", "right", "bottom", "top", "front", "back"};

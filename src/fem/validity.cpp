@@ -25,11 +25,20 @@ const ShapeTable& validity_samples(ElementType type, int order) {
   auto& slot = cache[{type, order}];
   if (!slot) {
     const auto& rule = quadrature_rule(type, metric_quadrature_degree(type, order));
-    const auto& nodes = reference_element(type, order).nodes;
-    // det A is constant on linear simplices; elsewhere add the order-2p lattice.
-    const bool dense = order > 1 || !is_simplex(type);
+    // A pyramid's apex has no gradient: its nodes but the apex (the linear pyramid's least
+    // det A is at its base corners, detail::pyramid_min_det).
+    const Eigen::MatrixXd& all = reference_element(type, order).nodes;
+    Eigen::MatrixXd nodes = all;
+    if (type == ElementType::Pyramid) {
+      nodes.resize(3, all.cols() - 1);
+      nodes << all.leftCols(4), all.rightCols(all.cols() - 5);
+    }
+    // det A is constant on linear simplices; elsewhere add the order-2p lattice (pyramids:
+    // order ≥ 2, the collapsed box's lattice below the apex).
+    const bool dense = type == ElementType::Pyramid ? order > 1 : (order > 1 || !is_simplex(type));
     Eigen::MatrixXd extra = dense ? detail::unit_lattice(type, 2 * order) : Eigen::MatrixXd(nodes.rows(), 0);
-    if (!is_simplex(type)) extra = (2.0 * extra.array() - 1.0).matrix();  // tensor cells live on [−1, 1]^d
+    if (is_tensor(type)) extra = (2.0 * extra.array() - 1.0).matrix();  // tensor cells live on [−1, 1]^d
+    if (type == ElementType::Prism) extra.row(2) = (2.0 * extra.row(2).array() - 1.0).matrix();  // ζ ∈ [−1, 1]
     Eigen::MatrixXd pts(nodes.rows(), rule.points.cols() + nodes.cols() + extra.cols());
     pts << rule.points, nodes, extra;
     slot = std::make_unique<ShapeTable>(tabulate(type, order, pts));

@@ -15,13 +15,14 @@ struct Entry {
 };
 
 // GmshDefines.h numbers of the complete Lagrange elements of our families.
-constexpr std::array<Entry, 21> k_types{{
+constexpr std::array<Entry, 25> k_types{{
     {15, ElementType::Point, 1},
     {1, ElementType::Line, 1}, {8, ElementType::Line, 2}, {26, ElementType::Line, 3}, {27, ElementType::Line, 4},
     {2, ElementType::Triangle, 1}, {9, ElementType::Triangle, 2}, {21, ElementType::Triangle, 3}, {23, ElementType::Triangle, 4},
     {3, ElementType::Quadrilateral, 1}, {10, ElementType::Quadrilateral, 2}, {36, ElementType::Quadrilateral, 3}, {37, ElementType::Quadrilateral, 4},
     {4, ElementType::Tetrahedron, 1}, {11, ElementType::Tetrahedron, 2}, {29, ElementType::Tetrahedron, 3}, {30, ElementType::Tetrahedron, 4},
     {5, ElementType::Hexahedron, 1}, {12, ElementType::Hexahedron, 2}, {92, ElementType::Hexahedron, 3}, {93, ElementType::Hexahedron, 4},
+    {6, ElementType::Prism, 1}, {13, ElementType::Prism, 2}, {7, ElementType::Pyramid, 1}, {14, ElementType::Pyramid, 2},
 }};
 
 }  // namespace
@@ -45,8 +46,8 @@ std::string describe_unsupported_gmsh_type(int code) {
     case 39: what = "serendipity/incomplete element type 39 (QUA_12)"; break;
     case 40: what = "serendipity/incomplete element type 40 (QUA_16I)"; break;
     case 99: what = "serendipity/incomplete element type 99 (HEX_32)"; break;
-    case 6: case 13: case 18: return "prism element type " + std::to_string(code) + " is not supported";
-    case 7: case 14: case 19: return "pyramid element type " + std::to_string(code) + " is not supported";
+    case 18: what = "serendipity/incomplete element type 18 (PRI_15)"; break;
+    case 19: what = "serendipity/incomplete element type 19 (PYR_13)"; break;
     default: break;
   }
   if (what) return std::string(what) + " is not supported (complete Lagrange elements only)";

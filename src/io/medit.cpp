@@ -23,6 +23,7 @@ constexpr Keyword k_elements[] = {
     {"Edges", ElementType::Line},          {"Triangles", ElementType::Triangle},
     {"Quadrilaterals", ElementType::Quadrilateral}, {"Tetrahedra", ElementType::Tetrahedron},
     {"Hexahedra", ElementType::Hexahedron}, {"Hexaedra", ElementType::Hexahedron},
+    {"Prisms", ElementType::Prism},         {"Pyramids", ElementType::Pyramid},
 };
 
 constexpr std::string_view k_flag_lists[] = {"Corners", "Ridges", "RequiredVertices", "RequiredEdges",

@@ -137,8 +137,45 @@ std::vector<P3> lattice(ElementType type, int p) {
           for (int i = 1; i < p; ++i) out.push_back({i, j, k});
       break;
     }
+    case ElementType::Prism: {  // VTK's Lagrange wedge, up to order 2 (no face or body nodes inside triangles)
+      const std::array<P3, 6> c{P3{0, 0, 0}, P3{p, 0, 0}, P3{0, p, 0}, P3{0, 0, p}, P3{p, 0, p}, P3{0, p, p}};
+      for (const P3& corner : c) out.push_back(corner);
+      constexpr int edges[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+      for (const auto& e : edges) edge(out, c[e[0]], c[e[1]], p);
+      constexpr int faces[3][4] = {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};  // bilinear from corner 0 of each
+      for (const auto& f : faces)
+        for (int j = 1; j < p; ++j)
+          for (int i = 1; i < p; ++i) {
+            P3 q{};
+            for (int k = 0; k < 3; ++k)
+              q[k] = ((p - j) * ((p - i) * c[f[0]][k] + i * c[f[1]][k]) + j * ((p - i) * c[f[3]][k] + i * c[f[2]][k])) / (p * p);
+            out.push_back(q);
+          }
+      break;
+    }
+    case ElementType::Pyramid:  // linear only: base, then apex (VTK's apex is above corner 0 in its pcoords)
+      for (const P3& q : {P3{0, 0, 0}, P3{p, 0, 0}, P3{p, p, 0}, P3{0, p, 0}, P3{0, 0, p}}) out.push_back(q);
+      break;
   }
   return out;
+}
+
+// A Gmsh reference node as a VTK lattice point of order p. Lines, quadrilaterals and
+// hexahedra: [−1, 1]^d → [0, 1]^d. Prisms: VTK's Lagrange wedge is Gmsh's prism with
+// t = (w + 1)/2 (VTK 9.1 gives it a positive volume so; its classic wedge is another matter,
+// vtk_cell_permutation). Pyramids: corner by corner (linear only).
+P3 vtk_lattice_point(ElementType type, const Eigen::VectorXd& x, int i, int p) {
+  const auto at = [&](double v) { return static_cast<int>(std::lround(v * p)); };
+  if (type == ElementType::Pyramid) {
+    constexpr std::array<P3, 5> corners{P3{0, 0, 0}, P3{1, 0, 0}, P3{1, 1, 0}, P3{0, 1, 0}, P3{0, 0, 1}};
+    const P3& c = corners[static_cast<std::size_t>(i)];
+    return {c[0] * p, c[1] * p, c[2] * p};
+  }
+  if (type == ElementType::Prism) return {at(x(0)), at(x(1)), at((x(2) + 1.0) / 2.0)};
+  const bool tensor = is_tensor(type) || type == ElementType::Line;
+  P3 q{};
+  for (Eigen::Index k = 0; k < x.size(); ++k) q[static_cast<std::size_t>(k)] = at(tensor ? (x(k) + 1.0) / 2.0 : x(k));
+  return q;
 }
 
 std::vector<int> compute_permutation(ElementType type, int order) {
@@ -146,16 +183,7 @@ std::vector<int> compute_permutation(ElementType type, int order) {
   const std::vector<P3> vtk = lattice(type, order);
   const ReferenceElement& ref = reference_element(type, order);
   std::map<P3, int> gmsh_index;
-  // Gmsh's lines, quadrilaterals and hexahedra live on [−1, 1]^d, VTK's on [0, 1]^d.
-  const bool tensor = !is_simplex(type) || type == ElementType::Line;
-  for (int i = 0; i < ref.n_nodes(); ++i) {
-    P3 q{};
-    for (int k = 0; k < ref.dim; ++k) {
-      const double v = tensor ? (ref.nodes(k, i) + 1.0) / 2.0 : ref.nodes(k, i);
-      q[static_cast<std::size_t>(k)] = static_cast<int>(std::lround(v * order));
-    }
-    gmsh_index[q] = i;
-  }
+  for (int i = 0; i < ref.n_nodes(); ++i) gmsh_index[vtk_lattice_point(type, ref.nodes.col(i), i, order)] = i;
   if (static_cast<int>(vtk.size()) != ref.n_nodes() || gmsh_index.size() != vtk.size())
     throw std::logic_error("vtk_to_gmsh_permutation: node sets of " + std::string(name_of(type)) + " differ");
   std::vector<int> perm;
@@ -177,6 +205,8 @@ int vtk_cell_type(ElementType type) {
     case ElementType::Quadrilateral: return 70;
     case ElementType::Tetrahedron: return 71;
     case ElementType::Hexahedron: return 72;
+    case ElementType::Prism: return 73;
+    case ElementType::Pyramid: return 74;
   }
   return 0;
 }
@@ -199,6 +229,11 @@ const std::vector<int>& vtk_to_gmsh_permutation(ElementType type, int order) {
   auto it = cache.find(key);
   if (it == cache.end()) it = cache.emplace(key, compute_permutation(type, order)).first;
   return it->second;
+}
+
+const std::vector<int>& vtk_cell_permutation(int vtk_type, ElementType type, int order) {
+  static const std::vector<int> k_wedge{0, 2, 1, 3, 5, 4};
+  return vtk_type == 13 ? k_wedge : vtk_to_gmsh_permutation(type, order);
 }
 
 }  // namespace meshmorph

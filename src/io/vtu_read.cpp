@@ -72,6 +72,10 @@ std::optional<VtkCell> vtk_cell(int code) {
     case 12: return VtkCell{ElementType::Hexahedron, 1};
     case 29: return VtkCell{ElementType::Hexahedron, 2};
     case 72: return VtkCell{ElementType::Hexahedron, 0};
+    case 13: return VtkCell{ElementType::Prism, 1};
+    case 73: return VtkCell{ElementType::Prism, 0};
+    case 14: return VtkCell{ElementType::Pyramid, 1};
+    case 74: return VtkCell{ElementType::Pyramid, 0};
     default: return std::nullopt;
   }
 }
@@ -155,6 +159,7 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
   CellBlock* block = nullptr;  // valid until the next builder.block() call, which resets it
   ElementType last_type = ElementType::Point;
   int last_order = -1;
+  std::int64_t last_code = -1;
   for (std::size_t i = 0; i < nc; ++i) {
     const std::int64_t end = offsets[i];
     if (end < prev || end > static_cast<std::int64_t>(conn.size()))
@@ -166,11 +171,14 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
     if (order == 0)
       for (int p = 1; p <= 4 && order == 0; ++p)
         if (n_nodes_of(vc->type, p) == n) order = p;
-    if (order == 0 || n_nodes_of(vc->type, order) != n)
+    // VTK 9.1 has no Lagrange pyramid of order 2 (VTK_LAGRANGE_PYRAMID has no cell class there).
+    const int highest = vc->type == ElementType::Pyramid ? 1 : vc->type == ElementType::Prism ? max_order_of(vc->type) : 4;
+    if (order == 0 || order > highest || n_nodes_of(vc->type, order) != n)
       f.fail(off_node, "cell " + std::to_string(i) + " of VTK type " + std::to_string(types[i]) + " has " +
-                           std::to_string(n) + " points, which is no complete Lagrange cell of order 1-4");
-    if (vc->type != last_type || order != last_order) {  // the permutation cache takes a lock
-      perm = &vtk_to_gmsh_permutation(vc->type, order);
+                           std::to_string(n) + " points, which is no complete Lagrange cell of order 1-" + std::to_string(highest));
+    if (vc->type != last_type || order != last_order || types[i] != last_code) {  // the permutation cache takes a lock
+      perm = &vtk_cell_permutation(static_cast<int>(types[i]), vc->type, order);
+      last_code = types[i];
       block = &builder.block(vc->type, order);
       last_type = vc->type;
       last_order = order;

@@ -75,6 +75,8 @@ std::uint8_t cell_type_code(const CellBlock& b) {
     case ElementType::Quadrilateral: return 9;
     case ElementType::Tetrahedron: return 10;
     case ElementType::Hexahedron: return 12;
+    case ElementType::Prism: return 13;
+    case ElementType::Pyramid: return 14;
   }
   return 0;
 }
@@ -82,6 +84,10 @@ std::uint8_t cell_type_code(const CellBlock& b) {
 }  // namespace
 
 void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<std::string, std::vector<double>>& cell_data) {
+  for (const CellBlock& b : mesh.cells)
+    if (b.type == ElementType::Pyramid && b.order > 1)
+      throw InputError("VTU cannot hold pyramids of order " + std::to_string(b.order) +
+                       ": VTK 9.1 has no cell class for VTK_LAGRANGE_PYRAMID (74); write .msh instead");
   const std::size_t n_cells = mesh.n_cells();
   for (const auto& [name, values] : cell_data)
     MESHMORPH_CHECK(values.size() == n_cells, "write_vtu: cell_data '" + name + "' has " + std::to_string(values.size()) +
@@ -99,9 +105,9 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
   bool lagrange_hexahedra = false;
   for (const auto* list : {&mesh.cells, &mesh.facets})
     for (const CellBlock& b : *list) {
-      const std::vector<int>& perm = vtk_to_gmsh_permutation(b.type, b.type == ElementType::Point ? 1 : b.order);
-      const std::size_t n = b.n_cells();
       const std::uint8_t code = cell_type_code(b);
+      const std::vector<int>& perm = vtk_cell_permutation(code, b.type, b.type == ElementType::Point ? 1 : b.order);
+      const std::size_t n = b.n_cells();
       lagrange_hexahedra |= code == 72 && n > 0;
       for (std::size_t c = 0; c < n; ++c) {
         const std::int32_t* nodes = b.cell(c);

@@ -11,6 +11,8 @@ std::string_view name_of(ElementType t) {
     case ElementType::Quadrilateral: return "quadrilateral";
     case ElementType::Tetrahedron: return "tetrahedron";
     case ElementType::Hexahedron: return "hexahedron";
+    case ElementType::Prism: return "prism";
+    case ElementType::Pyramid: return "pyramid";
   }
   return "unknown";
 }

@@ -16,6 +16,9 @@ const std::vector<std::vector<int>> k_quad_facets{{0, 1}, {1, 2}, {2, 3}, {3, 0}
 const std::vector<std::vector<int>> k_tet_facets{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
 const std::vector<std::vector<int>> k_hex_facets{{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3},
                                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}};
+// Gmsh's face order (MPrism, MPyramid): the triangles first on a prism, last the base on a pyramid.
+const std::vector<std::vector<int>> k_prism_facets{{0, 2, 1}, {3, 4, 5}, {0, 1, 4, 3}, {0, 3, 5, 2}, {1, 2, 5, 4}};
+const std::vector<std::vector<int>> k_pyramid_facets{{0, 1, 4}, {3, 0, 4}, {1, 2, 4}, {2, 3, 4}, {0, 3, 2, 1}};
 
 const std::vector<std::array<int, 2>> k_no_edges{};
 const std::vector<std::array<int, 2>> k_line_edges{{0, 1}};
@@ -24,6 +27,8 @@ const std::vector<std::array<int, 2>> k_quad_edges{{0, 1}, {1, 2}, {2, 3}, {3, 0
 const std::vector<std::array<int, 2>> k_tet_edges{{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}};
 const std::vector<std::array<int, 2>> k_hex_edges{{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3},
                                                   {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};
+const std::vector<std::array<int, 2>> k_prism_edges{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 4}, {2, 5}, {3, 4}, {3, 5}, {4, 5}};
+const std::vector<std::array<int, 2>> k_pyramid_edges{{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {2, 3}, {2, 4}, {3, 4}};
 
 // A facet identified by its sorted corner nodes (−1 pads 2- and 3-corner facets).
 struct FacetKey {
@@ -52,6 +57,8 @@ std::span<const std::vector<int>> corner_facets(ElementType t) {
     case ElementType::Quadrilateral: return k_quad_facets;
     case ElementType::Tetrahedron: return k_tet_facets;
     case ElementType::Hexahedron: return k_hex_facets;
+    case ElementType::Prism: return k_prism_facets;
+    case ElementType::Pyramid: return k_pyramid_facets;
   }
   return k_point_facets;
 }
@@ -64,16 +71,20 @@ std::span<const std::array<int, 2>> corner_edges(ElementType t) {
     case ElementType::Quadrilateral: return k_quad_edges;
     case ElementType::Tetrahedron: return k_tet_edges;
     case ElementType::Hexahedron: return k_hex_edges;
+    case ElementType::Prism: return k_prism_edges;
+    case ElementType::Pyramid: return k_pyramid_edges;
   }
   return k_no_edges;
 }
 
-ElementType facet_type(ElementType t, int /*f*/) {
+ElementType facet_type(ElementType t, int f) {
   switch (t) {
     case ElementType::Triangle:
     case ElementType::Quadrilateral: return ElementType::Line;
     case ElementType::Tetrahedron: return ElementType::Triangle;
     case ElementType::Hexahedron: return ElementType::Quadrilateral;
+    case ElementType::Prism: return f < 2 ? ElementType::Triangle : ElementType::Quadrilateral;
+    case ElementType::Pyramid: return f < 4 ? ElementType::Triangle : ElementType::Quadrilateral;
     default: return ElementType::Point;
   }
 }

@@ -52,6 +52,10 @@ Eigen::MatrixXd ideal_jacobian(ElementType type) {
           .finished();
     case ElementType::Quadrilateral: return Eigen::Matrix2d::Identity();
     case ElementType::Hexahedron: return Eigen::Matrix3d::Identity();
+    case ElementType::Prism:  // the equilateral triangle of unit edge × a unit height (ζ ∈ [−1, 1])
+      return (Eigen::Matrix3d() << 1.0, 0.5, 0.0, 0.0, std::sqrt(3.0) / 2.0, 0.0, 0.0, 0.0, 0.5).finished();
+    case ElementType::Pyramid:  // the unit square base at ζ = 0, the apex 1/√2 above: unit edges
+      return Eigen::Vector3d(0.5, 0.5, std::sqrt(0.5)).asDiagonal();
     default: MESHMORPH_CHECK(false, "ideal_jacobian: not a cell family");
   }
   return {};

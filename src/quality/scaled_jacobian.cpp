@@ -89,6 +89,37 @@ double hexahedron(const Eigen::MatrixXd& X) {
   return m.m;
 }
 
+// Verdict's wedge_scaled_jacobian on Gmsh's node order (ParaView hands Verdict VTK's wedge with
+// corners 0 ↔ 1 and 3 ↔ 4 swapped, a rotation of Gmsh's order, on which the formula is the same):
+// at each corner, the edges along the base triangle (next, previous corner) and the vertical
+// one, 2/√3 · det / (product of lengths), least over the six corners.
+double prism(const Eigen::MatrixXd& X) {
+  NanMin m;
+  for (int i = 0; i < 6; ++i) {
+    const int base = i < 3 ? 0 : 3, j = i - base, up = i < 3 ? i + 3 : i - 3;
+    const int next = base + (j + 1) % 3, prev = base + (j + 2) % 3;
+    Eigen::Matrix3d E;
+    E << X.col(next) - X.col(i), X.col(prev) - X.col(i), X.col(up) - X.col(i);
+    const double v = normalized_det(E);
+    m.add((i < 3 ? v : -v) * 2.0 / std::sqrt(3.0));
+  }
+  return m.m;
+}
+
+// Verdict's pyramid_scaled_jacobian: the tetrahedra (0 1 2 4), (0 2 3 4), (0 1 3 4), (1 2 3 4),
+// their least scaled Jacobian times √2 (1 on the pyramid of equal edges), 0 if it is ≤ 0, and
+// values above 1 reflected (2 − q).
+double pyramid(const Eigen::MatrixXd& X) {
+  static constexpr int k_tets[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 1, 3}, {1, 2, 3}};
+  NanMin m;
+  for (const auto& t : k_tets)
+    m.add(tetrahedron(X.col(t[1]) - X.col(t[0]), X.col(t[2]) - X.col(t[0]), X.col(4) - X.col(t[0])));
+  if (std::isnan(m.m)) return kNaN;
+  if (m.m <= 0.0) return 0.0;
+  const double q = m.m * std::sqrt(2.0);
+  return q < 1.0 ? q : 2.0 - q;
+}
+
 void check_shape(ElementType type, const Eigen::MatrixXd& M, Eigen::Index cols, const char* what) {
   const int d = topological_dim(type);
   MESHMORPH_CHECK(d >= 2, "scaled_jacobian: not a cell family");
@@ -103,6 +134,8 @@ double scaled_jacobian_linear(ElementType type, const Eigen::MatrixXd& X) {
     case ElementType::Triangle: return triangle(X.col(1) - X.col(0), X.col(2) - X.col(0));
     case ElementType::Quadrilateral: return quadrilateral(X);
     case ElementType::Tetrahedron: return tetrahedron(X.col(1) - X.col(0), X.col(2) - X.col(0), X.col(3) - X.col(0));
+    case ElementType::Prism: return prism(X);
+    case ElementType::Pyramid: return pyramid(X);
     default: return hexahedron(X);
   }
 }
@@ -113,6 +146,7 @@ double scaled_jacobian_at(ElementType type, const Eigen::MatrixXd& A) {
     case ElementType::Triangle: return triangle(A.col(0), A.col(1));
     case ElementType::Quadrilateral: return normalized_det(Eigen::Matrix2d(A));
     case ElementType::Tetrahedron: return tetrahedron(A.col(0), A.col(1), A.col(2));
+    case ElementType::Prism: return normalized_det(Eigen::Matrix3d(A)) * 2.0 / std::sqrt(3.0);  // as at a corner
     default: return normalized_det(Eigen::Matrix3d(A));
   }
 }

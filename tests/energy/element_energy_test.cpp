@@ -144,7 +144,9 @@ TEST_P(ElementEnergyProperties, PsdProjectionSimilarityAndInversion) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, ElementEnergyDerivatives, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, ElementEnergyDerivatives, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 INSTANTIATE_TEST_SUITE_P(All, ElementEnergyProperties, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, ElementEnergyProperties, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 TEST(IdealJacobian, HasTheRequestedVolumeAndShape) {
   const MatT<2> Wt = ideal_jacobian<2>(ElementType::Triangle, 3.0);

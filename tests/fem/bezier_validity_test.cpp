@@ -5,10 +5,13 @@
 #include <cstdlib>
 #include <limits>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/jacobian.h"
+#include "meshmorph/fem/quadrature.h"
+#include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/validity.h"
 #include "support/element_cases.h"
@@ -128,6 +131,85 @@ TEST_P(BezierValidity, SubdivisionDecidesWhatTheFirstCoefficientsCannot) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CurvedCells, BezierValidity, ::testing::ValuesIn(curved_cases()), test::CaseName());
+
+
+// Prisms: the coefficients on the triangle × segment Bernstein basis sum to det A; a prism whose
+// det A dips below zero between its samples along ζ (its top twisted against its base) is found.
+TEST(BezierValidity, PrismCoefficientsSumToTheDeterminantAndCatchADip) {
+  for (const int order : {1, 2}) {
+    const auto mesh = structured_mesh(ElementType::Prism, order, 1);
+    const auto& b = mesh.cells[0];
+    std::srand(7);
+    const Eigen::MatrixXd X = cell_coordinates(mesh, b, 0) + 0.1 * Eigen::MatrixXd::Random(3, b.n_nodes_per_cell());
+    const Eigen::VectorXd c = detail::prism_det_coefficients(order, X);
+    const auto [qa, qb] = detail::prism_det_degrees(order);
+    const Eigen::MatrixXd tri = detail::unit_lattice(ElementType::Triangle, qa) * qa;
+    for (const Eigen::Vector3d& xi : {Eigen::Vector3d(0.2, 0.3, -0.4), Eigen::Vector3d(0.6, 0.1, 0.7)}) {
+      double sum = 0.0;
+      const double t = (xi(2) + 1) / 2;
+      for (Eigen::Index a = 0; a < tri.cols(); ++a)
+        for (int k = 0; k <= qb; ++k) {
+          const int a1 = static_cast<int>(std::lround(tri(0, a))), a2 = static_cast<int>(std::lround(tri(1, a)));
+          const double bt = binomial(qa, a1) * binomial(qa - a1, a2) * std::pow(xi(0), a1) * std::pow(xi(1), a2) *
+                            std::pow(1 - xi(0) - xi(1), qa - a1 - a2);
+          sum += c(a + tri.cols() * k) * bt * binomial(qb, k) * std::pow(t, k) * std::pow(1 - t, qb - k);
+        }
+      const ShapeTable s = tabulate(b.type, b.order, xi);
+      EXPECT_NEAR(sum, Eigen::Matrix3d(jacobian(X, s, 0)).determinant(), 1e-12);
+    }
+  }
+  // Base √10·T, top diag(−1.054, −2.108)·T (T the unit triangle): the cross-sections between
+  // are (1 − t)√10 + t·a by (1 − t)√10 + t·b, so det A < 0 for t = (ζ + 1)/2 in (0.6, 0.75)
+  // and > 0 at t = 0, ½, 1 and at the Gauss points: only the expansion sees the fold.
+  Eigen::MatrixXd X = reference_element(ElementType::Prism, 1).nodes;
+  const Eigen::Matrix2d M0 = std::sqrt(10.0) * Eigen::Matrix2d::Identity(), M1 = Eigen::Vector2d(-1.054, -2.108).asDiagonal();
+  for (int i = 0; i < 6; ++i) X.block<2, 1>(0, i) = (i < 3 ? M0 : M1) * X.block<2, 1>(0, i);
+  EXPECT_LE(min_jacobian_det(ElementType::Prism, 1, X), 0.0);
+  std::vector<std::uint8_t> none(static_cast<std::size_t>(validity_samples(ElementType::Prism, 1).n_points()), 0);
+  EXPECT_GT(min_jacobian_det(ElementType::Prism, 1, X, none), 0.0);  // the samples alone
+  EXPECT_GT(min_jacobian_det(ElementType::Prism, 1, reference_element(ElementType::Prism, 1).nodes), 0.0);
+}
+
+// Pyramids: det A is bilinear in (ξ, η)/(1 − ζ), least at the base corners: the validity
+// minimum equals pyramid_min_det, and a base corner pushed through the opposite side of the
+// base is caught.
+TEST(BezierValidity, PyramidMinimumIsAtTheBaseCorners) {
+  std::srand(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::MatrixXd X = reference_element(ElementType::Pyramid, 1).nodes + 0.3 * Eigen::MatrixXd::Random(3, 5);
+    const double corners = detail::pyramid_min_det(X);
+    EXPECT_NEAR(min_jacobian_det(ElementType::Pyramid, 1, X), corners, 1e-12 * (1 + std::abs(corners)));
+    // Nowhere inside below it: dense samples.
+    const ShapeTable t = tabulate(ElementType::Pyramid, 1, Eigen::MatrixXd(quadrature_rule(ElementType::Pyramid, 12).points));
+    for (int q = 0; q < t.n_points(); ++q) EXPECT_GE(Eigen::Matrix3d(jacobian(X, t, q)).determinant(), corners - 1e-12);
+  }
+  Eigen::MatrixXd X = reference_element(ElementType::Pyramid, 1).nodes;
+  X.col(2) << -0.5, -0.5, 0.0;  // corner 2 folded past the diagonal 1–3
+  EXPECT_LE(min_jacobian_det(ElementType::Pyramid, 1, X), 0.0);
+}
+
+
+// Quadratic pyramids: det A is a polynomial in the collapsed coordinates; random curved
+// pyramids negative anywhere on a fine set of points are found invalid, and straight ones
+// valid.
+TEST(BezierValidity, NoFoldOfAQuadraticPyramidEscapesTheBounds) {
+  const Eigen::MatrixXd& ref = reference_element(ElementType::Pyramid, 2).nodes;
+  EXPECT_GT(min_jacobian_det(ElementType::Pyramid, 2, ref), 0.0);
+  const ShapeTable fine = tabulate(ElementType::Pyramid, 2, Eigen::MatrixXd(quadrature_rule(ElementType::Pyramid, 16).points));
+  std::srand(13);
+  int folded = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double amplitude = 0.05 + 0.3 * (trial % 10) / 10.0;
+    const Eigen::MatrixXd X = ref + amplitude * Eigen::MatrixXd::Random(3, 14);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int q = 0; q < fine.n_points(); ++q) lowest = std::min(lowest, Eigen::Matrix3d(jacobian(X, fine, q)).determinant());
+    if (lowest < 0.0) {
+      ++folded;
+      EXPECT_LE(min_jacobian_det(ElementType::Pyramid, 2, X), 0.0) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(folded, 0);
+}
 
 }  // namespace
 }  // namespace meshmorph

@@ -105,6 +105,7 @@ TEST_P(LagrangeBasisSweep, ReproducesPolynomialsOfItsDegree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCells, LagrangeBasisSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, LagrangeBasisSweep, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 }  // namespace
 }  // namespace meshmorph

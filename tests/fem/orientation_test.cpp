@@ -85,6 +85,7 @@ TEST_P(OrientationSweep, AMeshMirroredWholeHasEveryCellFlipped) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCells, OrientationSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, OrientationSweep, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 // The balance does not depend on where the mesh lies: far from the origin, the boundary terms
 // are taken about the middle of the mesh.

@@ -56,6 +56,29 @@ TEST(QuadratureRule, ExactForEveryMonomialUpToItsDegree) {
   }
 }
 
+// Prism: the triangle's monomials times ζ^c on [−1, 1], exact for total degree ≤ degree in
+// (ξ, η) and degree ≤ degree in ζ. Pyramid: ∫ ξ^a η^b ζ^c over the base [−1, 1]² shrinking to
+// the apex, = ∫₀¹ (1 − ζ)^(a+b+2) ζ^c dζ · ∫u^a ∫v^b, exact for a + b + c ≤ degree.
+TEST(QuadratureRule, PrismAndPyramidRulesAreExact) {
+  for (int degree = 0; degree <= 8; ++degree) {
+    const auto& prism = quadrature_rule(ElementType::Prism, degree);
+    const auto& pyramid = quadrature_rule(ElementType::Pyramid, degree);
+    EXPECT_TRUE((prism.weights.array() > 0).all() && (pyramid.weights.array() > 0).all());
+    for (int a = 0; a <= degree; ++a)
+      for (int b = 0; a + b <= degree; ++b)
+        for (int c = 0; c <= degree; ++c) {
+          const double tri = exact_monomial(ElementType::Triangle, a, b, 0), line = exact_monomial(ElementType::Line, c, 0, 0);
+          EXPECT_NEAR(integrate_monomial(prism, a, b, c), tri * line, 1e-13) << degree << ": " << a << b << c;
+          if (a + b + c > degree) continue;
+          const double beta = factorial(a + b + 2) * factorial(c) / factorial(a + b + c + 3);
+          const double pyr = exact_monomial(ElementType::Line, a, 0, 0) * exact_monomial(ElementType::Line, b, 0, 0) * beta;
+          EXPECT_NEAR(integrate_monomial(pyramid, a, b, c), pyr, 1e-13) << degree << ": " << a << b << c;
+        }
+  }
+  EXPECT_NEAR(quadrature_rule(ElementType::Prism, 3).weights.sum(), 1.0, 1e-14);
+  EXPECT_NEAR(quadrature_rule(ElementType::Pyramid, 3).weights.sum(), 4.0 / 3.0, 1e-14);
+}
+
 // Gauss–Lobatto products: exact to their degree in each variable, the corners of the cell
 // among the points, positive weights, and simplices unchanged.
 TEST(QuadratureRule, LobattoProductsAreExactAndHoldTheCorners) {

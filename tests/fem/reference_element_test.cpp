@@ -62,6 +62,7 @@ TEST_P(ReferenceElementSweep, FacetNormalsPointOutward) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCells, ReferenceElementSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, ReferenceElementSweep, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 TEST(CornerWeights, AreOneAtTheirCornerAndSumToOne) {
   for (auto t : {ElementType::Line, ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron,

@@ -61,6 +61,7 @@ TEST_P(BoundaryCrossingSweep, TwoOverlappingPartsCrossAndTwoTouchingPartsDoNot) 
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCells, BoundaryCrossingSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, BoundaryCrossingSweep, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 }  // namespace
 }  // namespace meshmorph

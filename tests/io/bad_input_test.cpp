@@ -43,7 +43,7 @@ const std::map<std::string, std::string>& expected_reasons() {
       {"msh22_binary_cut_elements.msh", "byte offset"},
       {"msh22_binary_element_type_minus1.msh", "byte offset 184: unsupported element type -1"},
       {"msh22_element_type_minus1.msh", "line 13: unsupported element type -1"},
-      {"msh22_prism.msh", "prism element type 6"},
+      {"msh22_pyramid13.msh", "line 13: serendipity/incomplete element type 19 (PYR_13)"},
       {"msh22_truncated.msh", "line 12: count 2 is larger than the rest of the file can hold"},
       {"msh22_wrong_element_count.msh", "expected element tag"},
       {"msh40_header.msh", "line 2: MSH 4.0 is not supported"},

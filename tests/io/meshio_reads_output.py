@@ -17,9 +17,9 @@ import sys
 
 import meshio
 
-DIM = {"vertex": 0, "line": 1, "triangle": 2, "quad": 2, "tetra": 3, "hexahedron": 3,
+DIM = {"vertex": 0, "line": 1, "triangle": 2, "quad": 2, "tetra": 3, "hexahedron": 3, "wedge": 3, "pyramid": 3,
        "VTK_LAGRANGE_CURVE": 1, "VTK_LAGRANGE_TRIANGLE": 2, "VTK_LAGRANGE_QUADRILATERAL": 2,
-       "VTK_LAGRANGE_TETRAHEDRON": 3, "VTK_LAGRANGE_HEXAHEDRON": 3}
+       "VTK_LAGRANGE_TETRAHEDRON": 3, "VTK_LAGRANGE_HEXAHEDRON": 3, "VTK_LAGRANGE_WEDGE": 3}
 
 
 def topological_dim(cell_type):

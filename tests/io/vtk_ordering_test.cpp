@@ -4,11 +4,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -162,6 +164,43 @@ TEST(VtkOrdering, Vtk8HexahedraAreRenumbered) {
     EXPECT_NE(read_mesh(dir / "v8_as_v9.vtu").cells[0].nodes, b.nodes);
   }
   fs::remove_all(dir);
+}
+
+
+// Prisms and pyramids: the internal reference nodes are Gmsh's (types 6, 13 and 7 as Gmsh
+// 4.8.4's getElementProperties gives them); VTK's classic wedge is Gmsh's prism with its base
+// and top triangles numbered the other way round, VTK's Lagrange wedge and pyramid are Gmsh's
+// orientation, and the P2 wedge's nodes lie where VTK 9.1's vtkLagrangeWedge puts them.
+TEST(VtkOrdering, PrismAndPyramidFollowGmshAndVtk) {
+  std::ifstream in(std::string(MESHMORPH_TEST_DATA) + "/io/gmsh_prism_pyramid_reference.json");
+  ASSERT_TRUE(in) << "missing tests/data/io/gmsh_prism_pyramid_reference.json";
+  const nlohmann::json data = nlohmann::json::parse(in);
+  for (const auto& [code, type, order] : {std::tuple{"6", ElementType::Prism, 1}, std::tuple{"13", ElementType::Prism, 2},
+                                          std::tuple{"7", ElementType::Pyramid, 1}}) {
+    SCOPED_TRACE(code);
+    const auto gmsh = data.at("cells").at(code).at("gmsh_ref_coords").get<std::vector<std::vector<double>>>();
+    const Eigen::MatrixXd& nodes = reference_element(type, order).nodes;
+    ASSERT_EQ(static_cast<std::size_t>(nodes.cols()), gmsh.size());
+    for (std::size_t i = 0; i < gmsh.size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(nodes(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)), gmsh[i][k]);
+  }
+  EXPECT_EQ(vtk_cell_permutation(13, ElementType::Prism, 1), (std::vector<int>{0, 2, 1, 3, 5, 4}));
+  EXPECT_EQ(vtk_cell_permutation(73, ElementType::Prism, 1), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(vtk_cell_permutation(14, ElementType::Pyramid, 1), (std::vector<int>{0, 1, 2, 3, 4}));
+  // VTK 9.1's vtkLagrangeWedge parametric coordinates of order 2 (GetParametricCoords).
+  const std::vector<std::array<double, 3>> lagrange_wedge{
+      {0, 0, 0},    {1, 0, 0},    {0, 1, 0},   {0, 0, 1},    {1, 0, 1},    {0, 1, 1},
+      {.5, 0, 0},   {.5, .5, 0},  {0, .5, 0},  {.5, 0, 1},   {.5, .5, 1},  {0, .5, 1},
+      {0, 0, .5},   {1, 0, .5},   {0, 1, .5},  {.5, 0, .5},  {.5, .5, .5}, {0, .5, .5}};
+  const Eigen::MatrixXd vtk = vtk_lagrange_points(ElementType::Prism, 2);
+  const Eigen::MatrixXd& gmsh = reference_element(ElementType::Prism, 2).nodes;
+  const auto& perm = vtk_to_gmsh_permutation(ElementType::Prism, 2);
+  for (int i = 0; i < 18; ++i) {
+    const auto& v = lagrange_wedge[static_cast<std::size_t>(i)];
+    EXPECT_EQ(Eigen::Vector3d(vtk.col(i)), Eigen::Vector3d(v[0], v[1], v[2])) << i;
+    const Eigen::Vector3d g = gmsh.col(perm[static_cast<std::size_t>(i)]);
+    EXPECT_EQ(Eigen::Vector3d(g(0), g(1), (g(2) + 1) / 2), Eigen::Vector3d(vtk.col(i))) << i;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Writes sample meshes in every format and encoding to a folder, with a manifest that
-// tests/io/meshio_reads_output.py checks with Python's meshio.
+// tests/io/meshio_reads_output.py checks with Python's meshio (and vtk_reads_output.py with VTK).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
       {ElementType::Triangle, 1}, {ElementType::Triangle, 2}, {ElementType::Triangle, 3}, {ElementType::Triangle, 4},
       {ElementType::Quadrilateral, 1}, {ElementType::Quadrilateral, 2}, {ElementType::Quadrilateral, 3},
       {ElementType::Tetrahedron, 1}, {ElementType::Tetrahedron, 2}, {ElementType::Tetrahedron, 3}, {ElementType::Tetrahedron, 4},
-      {ElementType::Hexahedron, 1}, {ElementType::Hexahedron, 2}, {ElementType::Hexahedron, 3}};
+      {ElementType::Hexahedron, 1}, {ElementType::Hexahedron, 2}, {ElementType::Hexahedron, 3},
+      {ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}};
   struct Variant {
     const char* suffix;
     MeshFormat format;

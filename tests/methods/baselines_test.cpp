@@ -164,6 +164,7 @@ TEST_P(BaselinesByElement, StiffnessAnnihilatesItsKernel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, BaselinesByElement, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName{});
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, BaselinesByElement, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName{});
 
 // Meshes above the size at which assembly goes parallel (512 cells per block).
 TEST(BaselineStiffness, AssemblyIsBitwiseIdenticalForAnyThreadCount) {

@@ -57,8 +57,7 @@ struct Case {
 // Morphs structured_mesh(type, order, n) with its whole boundary moved by similarity() and
 // checks the result: converged, the interior within `tolerance` of the similarity, quality 1.
 // Returns the Krylov iterations.
-long long check_similarity(ElementType type, int order, int n, LinearSolverKind solver, double tolerance) {
-  const Mesh mesh = structured_mesh(type, order, n);
+long long check_similarity(const Mesh& mesh, LinearSolverKind solver, double tolerance) {
   const Topology topo = build_topology(mesh);
   const Eigen::MatrixXd exact = similarity(mesh.x);
   const BoundaryTargets bc = all_boundary(mesh, topo, exact);
@@ -72,6 +71,10 @@ long long check_similarity(ElementType type, int order, int n, LinearSolverKind 
   EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), tolerance);
   EXPECT_NEAR(min_quality(mesh, x), 1.0, 1e-10);
   return r.krylov;
+}
+
+long long check_similarity(ElementType type, int order, int n, LinearSolverKind solver, double tolerance) {
+  return check_similarity(structured_mesh(type, order, n), solver, tolerance);
 }
 
 class MorphAffine : public ::testing::TestWithParam<Case> {};
@@ -94,6 +97,21 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<Case>& param) {
       return std::string(name_of(param.param.type)) + "_p" + std::to_string(param.param.order);
     });
+INSTANTIATE_TEST_SUITE_P(
+    PrismPyramid, MorphAffine,
+    ::testing::Values(Case{ElementType::Prism, 1, 3}, Case{ElementType::Prism, 2, 2}, Case{ElementType::Pyramid, 1, 2}),
+    [](const ::testing::TestParamInfo<Case>& param) {
+      return std::string(name_of(param.param.type)) + "_p" + std::to_string(param.param.order);
+    });
+
+// A Gmsh mesh of prisms and hexahedra in a thin layer under tetrahedra, with pyramids between
+// (tests/data/hybrid_layer.geo): the similarity of its boundary is reproduced inside, at
+// quality 1 (to 1e-8: the layer's cells are 15 times wider than thick).
+TEST(Morph, AHybridLayerMeshFollowsASimilarity) {
+  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  ASSERT_EQ(mesh.cells.size(), 4u);
+  check_similarity(mesh, LinearSolverKind::Cholesky, 1e-8);
+}
 
 // The iterative backend on high-order meshes (over 500 unknowns, so that the vertex hats
 // are a level of their own, detail::make_newton_solver): the same similarity. Newton stops

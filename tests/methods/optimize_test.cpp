@@ -80,6 +80,23 @@ TEST(Optimize, AJitteredInteriorReturnsToTheGrid) {
   }
 }
 
+// The hybrid layer mesh (hexahedra, prisms, pyramids, tetrahedra; tests/data/hybrid_layer.geo)
+// with its interior jittered by a tenth of the layers' thickness: the energy drops, every
+// iterate valid.
+TEST(Optimize, AHybridLayerMeshImprovesAndStaysValid) {
+  Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  const Topology topo = build_topology(mesh);
+  mesh.x = jitter_interior(mesh, topo, 0.1, 0.1 / 3, 5);
+  ASSERT_EQ(count_invalid_cells(mesh), 0u);
+  Eigen::MatrixXd x = mesh.x;
+  const OptimizeResult r = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, {}, x);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_LT(r.energy, r.energy0);
+  for (const auto& h : r.history) EXPECT_GT(h.min_det, 0.0);
+  mesh.x = x;
+  EXPECT_EQ(count_invalid_cells(mesh), 0u);
+}
+
 // A quarter annulus 1 ≤ r ≤ 2 (the unit square mapped by polar coordinates, so every node of
 // "left" lies on the unit circle exactly); `grading` > 0 crowds the nodes towards the ends.
 Mesh quarter_annulus(ElementType type, int order, int n, double grading = 0.0) {

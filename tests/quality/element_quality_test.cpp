@@ -123,6 +123,7 @@ TEST_P(ElementQuality, NonFiniteCoordinatesGiveZero) {
 
 INSTANTIATE_TEST_SUITE_P(AllTypesAndOrders, ElementQuality, ::testing::ValuesIn(test::all_cell_cases()),
                          test::CaseName());
+INSTANTIATE_TEST_SUITE_P(PrismPyramid, ElementQuality, ::testing::ValuesIn(test::prism_pyramid_cases()), test::CaseName());
 
 TEST(IdealJacobian, MapsTheReferenceToUnitEdgeRegularSimplices) {
   const Eigen::MatrixXd W = ideal_jacobian(ElementType::Tetrahedron);

@@ -93,5 +93,34 @@ TEST(ScaledJacobian, DegenerateIsZeroAndNonFiniteIsNaN) {
   }
 }
 
+
+// Prisms and pyramids: 1 on the cells of equal edges; Verdict's values on a right unit wedge
+// (√2/2 · 2/√3 at the corners on the hypotenuse) and on a pyramid of height ½ over the unit
+// square; negative (wedge) or 0 (pyramid) when inverted; the P2 prism's sampled value on a
+// straight cell equals the linear one.
+TEST(ScaledJacobian, PrismAndPyramidAsVerdict) {
+  for (const ElementType t : {ElementType::Prism, ElementType::Pyramid}) {
+    const Eigen::MatrixXd ideal = ideal_jacobian(t) * reference_element(t, 1).nodes;
+    EXPECT_NEAR(scaled_jacobian_linear(t, ideal), 1.0, 1e-14) << name_of(t);
+    EXPECT_NEAR(scaled_jacobian(t, 1, 3.0 * ideal), 1.0, 1e-14) << name_of(t);
+  }
+  Eigen::MatrixXd right(3, 6);
+  right << 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 1, 1;
+  EXPECT_NEAR(scaled_jacobian_linear(ElementType::Prism, right), std::sqrt(0.5) * 2.0 / std::sqrt(3.0), 1e-14);
+  Eigen::MatrixXd flipped = right;
+  flipped.row(2) *= -1.0;
+  EXPECT_NEAR(scaled_jacobian_linear(ElementType::Prism, flipped), -2.0 / std::sqrt(3.0), 1e-14);  // the right-angled corners
+  // Pyramid over [0, 1]² of height h = ½: tetrahedron (0 1 2 4) has 6V = h, longest corner
+  // product at corner 0 or 2: 1 · √2 · √(½ + h²) = √2 · 0.866…
+  Eigen::MatrixXd pyr(3, 5);
+  pyr << 0, 1, 1, 0, 0.5, 0, 0, 1, 1, 0.5, 0, 0, 0, 0, 0.5;
+  const double tet = 0.5 * std::sqrt(2.0) / (std::sqrt(2.0) * std::sqrt(0.75));
+  EXPECT_NEAR(scaled_jacobian_linear(ElementType::Pyramid, pyr), tet * std::sqrt(2.0), 1e-14);
+  pyr(2, 4) = -0.5;
+  EXPECT_EQ(scaled_jacobian_linear(ElementType::Pyramid, pyr), 0.0);
+  const Eigen::Matrix3d W = ideal_jacobian(ElementType::Prism);
+  EXPECT_NEAR(scaled_jacobian(ElementType::Prism, 2, W * reference_element(ElementType::Prism, 2).nodes), 1.0, 1e-13);
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -15,13 +15,19 @@ struct ElementCase {
   int order;
 };
 
-/// Every cell family at every supported order: triangles and tetrahedra 1–4, quadrilaterals
-/// and hexahedra 1–3.
+/// Every simplex and tensor cell family at every supported order: triangles and tetrahedra
+/// 1–4, quadrilaterals and hexahedra 1–3.
 inline std::vector<ElementCase> all_cell_cases() {
   std::vector<ElementCase> out;
   for (auto t : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron, ElementType::Hexahedron})
     for (int p = 1; p <= max_order_of(t); ++p) out.push_back({t, p});
   return out;
+}
+
+/// Prisms and pyramids 1–2: a second instantiation of the sweeps that hold for any cell
+/// (those written for simplices and tensor cells only keep all_cell_cases).
+inline std::vector<ElementCase> prism_pyramid_cases() {
+  return {{ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}, {ElementType::Pyramid, 2}};
 }
 
 inline std::string case_name(const ElementCase& c) { return std::string(name_of(c.type)) + "_p" + std::to_string(c.order); }

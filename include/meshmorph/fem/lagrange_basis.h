@@ -7,8 +7,15 @@
 namespace meshmorph {
 
 /// The nodal Lagrange basis of a reference element: N_a(ξ_b) = δ_ab at its nodes. Complete
-/// polynomials of degree p on simplices, tensor-product degree p on quads and hexes.
-/// Built by inverting the Vandermonde matrix of a monomial basis at the nodes.
+/// polynomials of degree p on simplices, tensor-product degree p on quads and hexes, the
+/// product of the triangle's degree-p and the segment's degree-p polynomials on prisms: built
+/// by inverting the Vandermonde matrix of a monomial basis at the nodes. The pyramid's space
+/// is not polynomial: the pyramidal space of Bergot, Cohen and Duruflé ("Higher-order finite
+/// elements for hybrid meshes using new nodal pyramidal elements", J. Sci. Comput. 42, 2010),
+/// which is Gmsh's, spanned by u^i v^j (1 − ζ)^max(i,j) ζ^k (u = ξ/(1 − ζ), v = η/(1 − ζ),
+/// i, j ≤ p, k ≤ p − max(i, j)); order 1: span{1, ξ, η, ζ, ξη/(1 − ζ)}, whose nodal functions
+/// are (1 − ζ)(1 ± u)(1 ± v)/4 and ζ. Gradients are bounded but have no limit at the apex,
+/// where they are not evaluated (quadrature and validity samples avoid it).
 class LagrangeBasis {
  public:
   LagrangeBasis(ElementType type, int order);
@@ -28,8 +35,8 @@ class LagrangeBasis {
 
  private:
   const ReferenceElement* ref_;
-  Eigen::MatrixXi exponents_;  // dim × n monomial exponents
-  Eigen::MatrixXd coeffs_;     // n × n: N_a = Σ_m coeffs_(m, a) · monomial_m
+  Eigen::MatrixXi exponents_;  // dim × n monomial exponents (empty on pyramids)
+  Eigen::MatrixXd coeffs_;     // n × n: N_a = Σ_m coeffs_(m, a) · monomial_m (pyramids: pyramidal function m)
 };
 
 /// The shared basis of (type, order).

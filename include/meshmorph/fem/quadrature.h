@@ -9,7 +9,7 @@ namespace meshmorph {
 /// A quadrature rule on a reference element (mesh reference domains: unit simplex,
 /// [−1, 1]^d), exact for polynomials of total degree `degree` on simplices and of degree
 /// `degree` in each variable on tensor cells. Weights are positive and sum to the
-/// reference measure (1/d! for simplices, 2^d for tensor cells).
+/// reference measure (reference_element.h: reference_measure).
 struct QuadratureRule {
   ElementType type;
   int degree = 0;
@@ -31,7 +31,10 @@ enum class QuadratureFamily {
 /// products for `Lobatto`, which does not change the rules of simplices); on simplices
 /// fully symmetric rules with positive weights and interior points for degrees 2–8 where
 /// one is tabulated (src/fem/detail/simplex_rules.inc), otherwise collapsed Gauss–Jacobi
-/// (Stroud conical) products; one point (the centroid) for degree ≤ 1.
+/// (Stroud conical) products; one point (the centroid) for degree ≤ 1. Prisms: the triangle's
+/// rule times Gauss–Legendre in ζ; pyramids: Gauss–Legendre × Gauss–Legendre × Gauss–Jacobi on
+/// the collapsed cube (Duffy), exact to `degree` in the collapsed coordinates. Both always
+/// Gauss.
 const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family = QuadratureFamily::Gauss);
 
 /// Degree used by default for mesh-quality integrals on an element of `order`: 1 for

@@ -9,7 +9,8 @@
 namespace meshmorph {
 
 /// Reads an ASCII Medit .mesh file (INRIA GMF): Dimension, Vertices (x y [z] ref),
-/// Edges, Triangles, Quadrilaterals, Tetrahedra, Hexahedra (also spelled Hexaedra), End;
+/// Edges, Triangles, Quadrilaterals, Tetrahedra, Hexahedra (also spelled Hexaedra), Prisms,
+/// Pyramids (their vertices in Gmsh's order, as meshio reads them), End;
 /// the flag keywords Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles
 /// are skipped. Indices are 1-based; element references become physical tags (unnamed
 /// groups); vertex references are ignored. The mesh has no node fields (Medit keeps

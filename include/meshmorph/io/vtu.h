@@ -30,13 +30,14 @@ Mesh parse_vtu(std::string_view data, const std::filesystem::path& file);
 
 /// Writes a .vtu file (little-endian, UInt64 headers; `version="2.2"` when Lagrange
 /// hexahedra are present, as VTK does, else "1.0"): Points as Float64 with 3 components,
-/// cells then facets, linear ones as VTK's classic types (1, 3, 5, 9, 10, 12), higher
-/// orders as Lagrange cells (68–72) in VTK's node ordering, Mesh::node_fields as Float64
+/// cells then facets, linear ones as VTK's classic types (1, 3, 5, 9, 10, 12, 13 wedge, 14
+/// pyramid), higher orders as Lagrange cells (68–73) in VTK's node ordering (the classic
+/// wedge's own: vtk_cell_permutation), Mesh::node_fields as Float64
 /// PointData, cell data Int32 `group` (physical tag) and `entity`, each array of
 /// `cell_data` as Float64 (one value per cell of Mesh::cells; NaN on facets), and named
 /// groups as FieldData arrays {tag, dim}. `binary`: base64-encoded arrays, else ASCII with
 /// shortest exact doubles. Throws std::invalid_argument if a cell_data array or a node
-/// field has the wrong length.
+/// field has the wrong length, InputError for pyramids of order 2 (VTK 9.1 cannot read them).
 void write_vtu(std::ostream& out, const Mesh& mesh, bool binary,
                const std::map<std::string, std::vector<double>>& cell_data = {});
 

@@ -9,7 +9,7 @@ namespace meshmorph {
 /// The target W of an element-quality measurement (DESIGN §2).
 enum class QualityTarget {
   Input,  ///< W = the input element's Jacobian at each point: relative quality, 1 = undistorted
-  Ideal,  ///< W = ideal_jacobian(type): absolute shape quality, 1 = regular simplex / square / cube
+  Ideal,  ///< W = ideal_jacobian(type): absolute shape quality, 1 = regular simplex / square / cube / prism / pyramid of equal edges
 };
 
 /// The ideal element's Jacobian on the mesh reference element (d × d): the map from the
