@@ -82,30 +82,28 @@ Eigen::MatrixXd MorphProblem<d>::gather_targets(const Eigen::MatrixXd& target) c
 }
 
 template <int d>
-void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
+void MorphProblem<d>::assemble(Want want, HessianMode mode, Assembly& out) {
   AssemblyOptions o;
-  o.want = Want::Hessian;
+  o.want = want;
   o.hessian = mode;
   o.weights = weights_;
   o.threads = threads_;
   assembler_->assemble(*metric_, x_, o, out);
-  if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, Want::Hessian, mode, out);
-  if (!std::isfinite(out.value)) return;
-  penalty_->add_to(*assembler_, x_, Want::Hessian, out);
-  if (!slides_.empty()) slides_.constrain(x_, mode, out, threads_);
+  if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, want, mode, out);
+  if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, want, out);
+}
+
+template <int d>
+void MorphProblem<d>::evaluate(HessianMode mode, Assembly& out) {
+  assemble(Want::Hessian, mode, out);
+  if (std::isfinite(out.value) && !slides_.empty()) slides_.constrain(x_, mode, out, threads_);
 }
 
 template <int d>
 bool MorphProblem<d>::evaluate_gradient(Assembly& out) {
   // A slide node's frame comes from its Hessian block (energy/slide_constraints.h).
   if (!slides_.empty()) return false;
-  AssemblyOptions o;
-  o.want = Want::Gradient;
-  o.weights = weights_;
-  o.threads = threads_;
-  assembler_->assemble(*metric_, x_, o, out);
-  if (std::isfinite(out.value) && !guard_.empty()) guard_.add_to(*metric_, x_, weights_, Want::Gradient, HessianMode::Projected, out);
-  if (std::isfinite(out.value)) penalty_->add_to(*assembler_, x_, Want::Gradient, out);
+  assemble(Want::Gradient, HessianMode::Projected, out);
   return true;
 }
 

@@ -70,6 +70,8 @@ class MorphProblem final : public NewtonProblem {
  private:
   const std::vector<double>& distortions();  // η_e per cell at the current state (cached)
   void weights_changed();  // recomputes reference_energy_ and boundary_weight_
+  // The energy's terms at x_ (distortion, guard, penalty), before the slide constraints.
+  void assemble(Want want, HessianMode mode, Assembly& out);
   // out = x_ + α p, slide nodes returned onto their planes; false where one does not return.
   bool step_to(const Eigen::VectorXd& p, double alpha, Eigen::MatrixXd& out) const;
   const Mesh* mesh_;
