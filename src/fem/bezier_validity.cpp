@@ -17,6 +17,20 @@
 #include "meshmorph/fem/tensor_basis.h"
 
 namespace meshmorph::detail {
+
+double binomial(int n, int k) {
+  double b = 1.0;
+  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+  return b;
+}
+
+Eigen::MatrixXd segment_bernstein(int q) {
+  Eigen::MatrixXd M(q + 1, q + 1);
+  for (int i = 0; i <= q; ++i)
+    for (int k = 0; k <= q; ++k) M(i, k) = binomial(q, k) * std::pow(double(i) / q, k) * std::pow(1.0 - double(i) / q, q - k);
+  return M;
+}
+
 namespace {
 
 // Degree of det A: each column of A has degree p − 1 (simplex, total degree) or p − 1 in its
@@ -24,12 +38,6 @@ namespace {
 int det_degree(ElementType type, int order) {
   const int d = topological_dim(type);
   return is_simplex(type) ? d * (order - 1) : d * order - 1;
-}
-
-double binomial(int n, int k) {
-  double b = 1.0;
-  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
-  return b;
 }
 
 // The Bernstein expansion of degree q on (type)'s reference cell, from values at its lattice.
@@ -88,9 +96,7 @@ std::unique_ptr<DetExpansion> make_expansion(ElementType type, int order) {
       if (*std::max_element(alpha.begin(), alpha.end()) == q) e->corners.push_back(a);
     }
   } else {
-    Eigen::MatrixXd M(q + 1, q + 1);
-    for (int i = 0; i <= q; ++i)
-      for (int k = 0; k <= q; ++k) M(i, k) = binomial(q, k) * std::pow(double(i) / q, k) * std::pow(1.0 - double(i) / q, q - k);
+    const Eigen::MatrixXd M = segment_bernstein(q);
     e->to_bernstein = M.inverse();
     e->from_bernstein = M;
     for (Eigen::Index a = 0; a < n; ++a) {

@@ -17,20 +17,9 @@
 namespace meshmorph::detail {
 namespace {
 
-double binomial(int n, int k) {
-  double b = 1.0;
-  for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
-  return b;
-}
-
 // The inverse of the Bernstein polynomials of degree q on [0, 1] at the points i/q: lattice
 // values → coefficients.
-Eigen::MatrixXd segment_inverse(int q) {
-  Eigen::MatrixXd L(q + 1, q + 1);
-  for (int i = 0; i <= q; ++i)
-    for (int k = 0; k <= q; ++k) L(i, k) = binomial(q, k) * std::pow(double(i) / q, k) * std::pow(1.0 - double(i) / q, q - k);
-  return L.inverse();
-}
+Eigen::MatrixXd segment_inverse(int q) { return segment_bernstein(q).inverse(); }
 
 // The least det A that bisection finds, from `root`: det A at a piece's lattice (`dets`) ≤ 0
 // anywhere is returned; pieces whose coefficients (`coefficients`) are all positive are

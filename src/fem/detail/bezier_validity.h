@@ -9,6 +9,12 @@
 
 namespace meshmorph::detail {
 
+/// n choose k, in double.
+double binomial(int n, int k);
+
+/// The Bernstein polynomials of degree q on [0, 1] at the points i/q: M(i, k) = B_k(i/q).
+Eigen::MatrixXd segment_bernstein(int q);
+
 /// The regular lattice of order m on the unit simplex, the unit box [0, 1]^d or the unit
 /// triangle × [0, 1] (prisms) (dim × N, x fastest); on pyramids, the lattice of the collapsed
 /// box (u, v, ζ) ∈ [−1, 1]² × [0, 1] below the apex, as points (u(1 − ζ), v(1 − ζ), ζ): the validity samples' order-2p lattice, and the points whose values give the
