@@ -10,6 +10,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/log.h"
+#include "meshmorph/mesh/node_order.h"
 #include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/metric_registry.h"
 #include "meshmorph/solve/newton.h"
@@ -271,18 +272,56 @@ class MorphImpl final : public Morpher::Impl {
 
 }  // namespace
 
+// The run's nodes in locality_order(): the Newton systems of a mesh numbered as its
+// generator left it spend much of their time waiting for scattered vector entries.
+struct Morpher::Renumbered {
+  Renumbered(const Mesh& input, const BoundaryTargets& input_bc)
+      : order(locality_order(input)), mesh(renumber_nodes(input, order)), topology(build_topology(mesh)) {
+    bc.role.resize(order.size());
+    bc.target = in_order(input_bc.target);
+    bc.normal = in_order(input_bc.normal);
+    for (std::size_t k = 0; k < order.size(); ++k) bc.role[k] = input_bc.role[order[k]];
+  }
+  Eigen::MatrixXd in_order(const Eigen::MatrixXd& x) const {
+    Eigen::MatrixXd y(x.rows(), x.cols());
+    for (std::size_t k = 0; k < order.size(); ++k) y.col(static_cast<Eigen::Index>(k)) = x.col(order[k]);
+    return y;
+  }
+  void back(const Eigen::MatrixXd& y, Eigen::MatrixXd& x) const {
+    for (std::size_t k = 0; k < order.size(); ++k) x.col(order[k]) = y.col(static_cast<Eigen::Index>(k));
+  }
+
+  std::vector<std::int32_t> order;
+  Mesh mesh;
+  Topology topology;
+  BoundaryTargets bc;
+};
+
 Morpher::Morpher(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options) {
   MESHMORPH_CHECK(bc.n_nodes() == input.n_nodes(), "Morpher: the boundary targets do not fit the mesh");
+  const Mesh* mesh = &input;
+  const Topology* topo = &topology;
+  const BoundaryTargets* targets = &bc;
+  if (options.renumber) {
+    renumbered_ = std::make_unique<Renumbered>(input, bc);
+    mesh = &renumbered_->mesh;
+    topo = &renumbered_->topology;
+    targets = &renumbered_->bc;
+  }
   if (input.dim == 2)
-    impl_ = std::make_unique<MorphImpl<2>>(input, topology, bc, options);
+    impl_ = std::make_unique<MorphImpl<2>>(*mesh, *topo, *targets, options);
   else
-    impl_ = std::make_unique<MorphImpl<3>>(input, topology, bc, options);
+    impl_ = std::make_unique<MorphImpl<3>>(*mesh, *topo, *targets, options);
 }
 
 Morpher::~Morpher() = default;
 
 MorphResult Morpher::solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step) {
-  return impl_->solve(target, x, step);
+  if (!renumbered_) return impl_->solve(target, x, step);
+  Eigen::MatrixXd y = renumbered_->in_order(x);
+  const MorphResult result = impl_->solve(renumbered_->in_order(target), y, step);
+  renumbered_->back(y, x);
+  return result;
 }
 
 }  // namespace meshmorph

@@ -65,6 +65,9 @@ struct MorphOptions {
   bool finish_by_untangle = true;
   LinearSolverKind solver = LinearSolverKind::Auto;
   int threads = 0;
+  /// Solve on the nodes in locality_order() (mesh/node_order.h); results come back in the
+  /// input's numbering.
+  bool renumber = true;
 };
 
 /// One augmented-Lagrangian iteration, for the report's history.
@@ -123,8 +126,10 @@ class Morpher {
   MorphResult solve(const Eigen::MatrixXd& target, Eigen::MatrixXd& x, int step = 1);
 
   struct Impl;  ///< the implementation for one dimension (src/methods/morph.cpp)
+  struct Renumbered;  ///< the mesh in locality_order() (mesh/node_order.h), what Impl solves on
 
  private:
+  std::unique_ptr<Renumbered> renumbered_;
   std::unique_ptr<Impl> impl_;
 };
 
