@@ -90,6 +90,22 @@ void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& 
 
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
                      int step_files) {
+  if (report.cell_types.size() > 1) {
+    std::string types;
+    char value[32];
+    for (const CellTypeMinima& t : report.cell_types) {
+      const auto put = [&](const char* name, const std::optional<double>& v) {
+        if (!v) return;
+        std::snprintf(value, sizeof value, "%s %.4f", name, *v);
+        types += std::string(types.size() > 0 && types.back() != ' ' ? ", " : "") + value;
+      };
+      types += std::string(types.empty() ? "" : "; ") + t.type + ": ";
+      put("min", t.min_quality);
+      put("shape", t.min_shape_quality);
+      put("SJ", t.min_scaled_jacobian);
+    }
+    out << "by type  " << types << "\n";
+  }
   out << "result   " << report.message << "\n";
   if (report.converged && output) out << "wrote    " << output->string() << "\n";
   else if (output && step_files > 0)
