@@ -10,6 +10,7 @@
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace {
@@ -177,6 +178,38 @@ TEST(Deform, NeedsADesignAndAFarField) {
   laplace.method = DeformMethod::Laplace;
   laplace.cvt = false;
   EXPECT_NO_THROW(deform(mesh, topo, no_far, mesh.x, laplace));
+}
+
+// The hybrid layer mesh (prisms and hexahedra under tetrahedra, pyramids between;
+// tests/data/hybrid_layer.geo): its bottom raised by the bump of height 0.3, whose highest
+// node (0.063) passes the layer's first row of prisms (0.033 thick). The extension carries
+// the layer up: valid, the far field in place, with and without the CVT step.
+TEST(Deform, AHybridLayerMeshFollowsABump) {
+  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  const Topology topo = build_topology(mesh);
+  const BoundaryTargets bc = bump(mesh, topo, 0.3);
+  Mesh raised = mesh;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (bc.role[i] == NodeRole::Prescribed) raised.x.col(static_cast<Eigen::Index>(i)) = bc.target.col(static_cast<Eigen::Index>(i));
+  ASSERT_GT(count_invalid_cells(raised), 0u) << "moving the bottom alone must invert cells";
+  for (bool cvt : {false, true}) {
+    DeformOptions o;
+    o.cvt = cvt;
+    const DeformResult r = deform(mesh, topo, bc, mesh.x, o);
+    ASSERT_TRUE(r.converged) << "cvt " << cvt << ": " << r.message;
+    Mesh moved = mesh;
+    moved.x = r.x;
+    EXPECT_EQ(count_invalid_cells(moved), 0u) << "cvt " << cvt;
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+      const auto c = static_cast<Eigen::Index>(i);
+      if (bc.role[i] == NodeRole::Fixed) {
+        EXPECT_TRUE(r.x.col(c) == mesh.x.col(c)) << i;
+      }
+      if (bc.role[i] == NodeRole::Prescribed && !cvt) {
+        EXPECT_TRUE(r.x.col(c) == bc.target.col(c)) << i;
+      }
+    }
+  }
 }
 
 }  // namespace
