@@ -73,6 +73,19 @@ Mesh perturbed(Mesh mesh, int n, double amount) {
   return mesh;
 }
 
+// The untangled positions x make `mesh` valid, at a positive quality, with every boundary node
+// exactly on its target.
+void expect_valid_on_targets(const Mesh& mesh, const BoundaryTargets& bc, const UntangleResult& r, const Eigen::MatrixXd& x) {
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  EXPECT_GT(r.min_quality, 0.0);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (bc.role[i] != NodeRole::Free) {
+      EXPECT_EQ(x.col(static_cast<Eigen::Index>(i)), bc.target.col(static_cast<Eigen::Index>(i)));
+    }
+}
+
 struct Case {
   ElementType type;
   int order;
@@ -124,14 +137,7 @@ TEST_P(UntangleCases, RecoversAValidMeshFromATangledOne) {
     const UntangleResult r = untangler.solve(bc.target, x);
     EXPECT_GT(r.initial_inverted, 0u) << "the case must start tangled";
     ASSERT_TRUE(r.converged) << r.message;
-    Mesh moved = mesh;
-    moved.x = x;
-    EXPECT_EQ(count_invalid_cells(moved), 0u);
-    EXPECT_GT(r.min_quality, 0.0);
-    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-      if (bc.role[i] != NodeRole::Free) {
-        EXPECT_EQ(x.col(static_cast<Eigen::Index>(i)), bc.target.col(static_cast<Eigen::Index>(i)));
-      }
+    expect_valid_on_targets(mesh, bc, r, x);
     EXPECT_GT(r.history.size(), 1u);
     EXPECT_EQ(r.history.back().inverted, 0u);
     EXPECT_EQ(r.history.back().delta, 0.0) << "the last steps minimise the unregularized functional";
@@ -397,14 +403,7 @@ TEST(Untangle, RecoversAHybridLayerMesh) {
   const UntangleResult r = untangler.solve(bc.target, x);
   EXPECT_GE(r.initial_inverted, inverted_prisms);
   ASSERT_TRUE(r.converged) << r.message;
-  Mesh moved = mesh;
-  moved.x = x;
-  EXPECT_EQ(count_invalid_cells(moved), 0u);
-  EXPECT_GT(r.min_quality, 0.0);
-  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-    if (bc.role[i] != NodeRole::Free) {
-      EXPECT_EQ(x.col(static_cast<Eigen::Index>(i)), bc.target.col(static_cast<Eigen::Index>(i)));
-    }
+  expect_valid_on_targets(mesh, bc, r, x);
 }
 
 }  // namespace
