@@ -92,17 +92,18 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
                      int step_files) {
   if (report.cell_types.size() > 1) {
     std::string types;
-    char value[32];
     for (const CellTypeMinima& t : report.cell_types) {
+      std::string values;
       const auto put = [&](const char* name, const std::optional<double>& v) {
         if (!v) return;
-        std::snprintf(value, sizeof value, "%s %.4f", name, *v);
-        types += std::string(types.size() > 0 && types.back() != ' ' ? ", " : "") + value;
+        char value[48];
+        std::snprintf(value, sizeof value, "%s%s %.4f", values.empty() ? "" : ", ", name, *v);
+        values += value;
       };
-      types += std::string(types.empty() ? "" : "; ") + t.type + ": ";
       put("min", t.min_quality);
       put("shape", t.min_shape_quality);
       put("SJ", t.min_scaled_jacobian);
+      types += (types.empty() ? "" : "; ") + t.type + ": " + values;
     }
     out << "by type  " << types << "\n";
   }
