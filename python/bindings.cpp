@@ -63,6 +63,16 @@ py::dict quality_dict(const QualityReport& q) {
   d["min_scaled_jacobian"] = q.min_scaled_jacobian;
   d["shape_quality"] = array_of(q.shape_quality);
   d["scaled_jacobian"] = array_of(q.scaled_jacobian);
+  py::dict types;
+  for (const CellTypeQuality& t : q.by_type) {
+    py::dict m;
+    m["elements"] = t.n_cells;
+    if (q.has_input) m["min_quality"] = t.min_quality;
+    m["min_shape_quality"] = t.min_shape_quality;
+    m["min_scaled_jacobian"] = t.min_scaled_jacobian;
+    types[py::str(std::string(name_of(t.type)))] = m;
+  }
+  d["cell_types"] = types;
   return d;
 }
 

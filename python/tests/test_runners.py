@@ -91,6 +91,22 @@ class QualityTest(unittest.TestCase):
             self.assertEqual(q[key], cli[key], key)
         self.assertEqual(q["cells"], cli["elements"])
 
+    def test_the_minima_per_cell_type_of_the_command_line(self):
+        source = ROOT / "tests" / "data" / "hybrid_layer.msh"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = pathlib.Path(tmp) / "q.json"
+            subprocess.run([os.environ["MESHMORPH_BIN"], "--threads", "1", "quality", str(source), "--json", str(path)],
+                           check=True, stdout=subprocess.DEVNULL)
+            cli = json.loads(path.read_text())["cell_types"]
+        mesh = meshmorph.read_mesh(str(source))
+        q = meshmorph.quality(mesh)["cell_types"]
+        self.assertEqual(list(q), ["tetrahedron", "hexahedron", "prism", "pyramid"])
+        self.assertEqual(list(q), list(cli))
+        for name, minima in q.items():
+            self.assertIsNone(cli[name].pop("min_quality"))
+            self.assertEqual(minima, cli[name], name)
+        self.assertAlmostEqual(meshmorph.quality(mesh, mesh)["cell_types"]["prism"]["min_quality"], 1.0, places=12)
+
 
 class ConvertTest(unittest.TestCase):
     def test_the_same_file_as_the_command_line(self):

@@ -50,6 +50,12 @@ void fill_measures(Report& report, const Mesh& mesh, const QualityReport& q) {
   }
   report.min_shape_quality = q.min_shape_quality;
   report.min_scaled_jacobian = q.min_scaled_jacobian;
+  report.cell_types.clear();
+  for (const CellTypeQuality& t : q.by_type) {
+    CellTypeMinima m{std::string(name_of(t.type)), t.n_cells, std::nullopt, t.min_shape_quality, t.min_scaled_jacobian};
+    if (q.has_input) m.min_quality = t.min_quality;
+    report.cell_types.push_back(std::move(m));
+  }
 }
 
 QualityReport fill_result(Report& report, const Mesh& moved, const Mesh* input, const BoundaryTargets& bc) {

@@ -92,6 +92,14 @@ ordered_json report_to_json(const Report& r) {
     j["timings"] = ordered_json::object();
     for (int p = 0; p < k_phases; ++p) j["timings"][std::string(phase_key(Phase(p)))] = number_or_null((*r.timings)[Phase(p)]);
   }
+  if (!r.cell_types.empty()) {
+    j["cell_types"] = ordered_json::object();
+    for (const CellTypeMinima& t : r.cell_types)
+      j["cell_types"][t.type] = {{"elements", t.elements},
+                                 {"min_quality", number_or_null(t.min_quality)},
+                                 {"min_shape_quality", number_or_null(t.min_shape_quality)},
+                                 {"min_scaled_jacobian", number_or_null(t.min_scaled_jacobian)}};
+  }
   return j;
 }
 
@@ -159,6 +167,21 @@ Report report_from_json(const ordered_json& oj, const std::string& file) {
     }
     to.finish();
     r.timings = timings;
+  }
+  if (const json* types = o.optional("cell_types")) {
+    if (!types->is_object()) o.at("cell_types").fail("expected an object, found " + detail::json_type_phrase(*types));
+    for (const auto& item : oj.at("cell_types").items()) {
+      const json value(item.value());
+      detail::ObjectReader to(value, o.at("cell_types").key(item.key()));
+      CellTypeMinima t;
+      t.type = item.key();
+      t.elements = read_count(to.required("elements"), to.at("elements"));
+      t.min_quality = optional_number(to.required("min_quality"), to.at("min_quality"));
+      t.min_shape_quality = optional_number(to.required("min_shape_quality"), to.at("min_shape_quality"));
+      t.min_scaled_jacobian = optional_number(to.required("min_scaled_jacobian"), to.at("min_scaled_jacobian"));
+      to.finish();
+      r.cell_types.push_back(std::move(t));
+    }
   }
   o.finish();
   return r;

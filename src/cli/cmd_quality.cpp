@@ -68,6 +68,12 @@ void print_table(std::ostream& out, const std::string& file, const Mesh& mesh, c
   row("shape quality min / mean", fixed(q.min_shape_quality) + " / " + fixed(q.mean_shape_quality) +
                                       "   (1/eta against the ideal element; 1 = ideal, 0 = inverted)");
   row("scaled Jacobian min", fixed(q.min_scaled_jacobian) + "   (Verdict; ParaView's \"Scaled Jacobian\")");
+  if (q.by_type.size() > 1) {
+    for (const CellTypeQuality& t : q.by_type) {
+      const std::string name = "  " + std::string(name_of(t.type));
+      row(name.c_str(), "shape quality min " + fixed(t.min_shape_quality) + ", scaled Jacobian min " + fixed(t.min_scaled_jacobian));
+    }
+  }
   out << "  shape quality histogram\n";
   std::size_t most = 1;
   for (std::size_t n : q.shape_histogram) most = std::max(most, n);

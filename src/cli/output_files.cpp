@@ -90,6 +90,23 @@ void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& 
 
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
                      int step_files) {
+  if (report.cell_types.size() > 1) {
+    std::string types;
+    for (const CellTypeMinima& t : report.cell_types) {
+      std::string values;
+      const auto put = [&](const char* name, const std::optional<double>& v) {
+        if (!v) return;
+        char value[48];
+        std::snprintf(value, sizeof value, "%s%s %.4f", values.empty() ? "" : ", ", name, *v);
+        values += value;
+      };
+      put("min", t.min_quality);
+      put("shape", t.min_shape_quality);
+      put("SJ", t.min_scaled_jacobian);
+      types += (types.empty() ? "" : "; ") + t.type + ": " + values;
+    }
+    out << "by type  " << types << "\n";
+  }
   out << "result   " << report.message << "\n";
   if (report.converged && output) out << "wrote    " << output->string() << "\n";
   else if (output && step_files > 0)

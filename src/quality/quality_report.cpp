@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -47,6 +48,33 @@ void summarize(const std::vector<double>& q, double& min, double& mean, std::arr
     ++histogram[quality_bin(v)];
   }
   mean = sum / static_cast<double>(q.size());
+}
+
+// The minimum of q over the cells [begin, end), ignoring non-finite values; NaN if none.
+double finite_min(const std::vector<double>& q, std::size_t begin, std::size_t end, double min) {
+  for (std::size_t g = begin; g < end; ++g)
+    if (std::isfinite(q[g])) min = std::isnan(min) ? q[g] : std::min(min, q[g]);
+  return min;
+}
+
+std::vector<CellTypeQuality> minima_by_type(const Mesh& mesh, const QualityReport& r) {
+  std::vector<CellTypeQuality> by_type;
+  std::size_t offset = 0;
+  for (const CellBlock& block : mesh.cells) {
+    auto it = std::find_if(by_type.begin(), by_type.end(), [&](const CellTypeQuality& t) { return t.type == block.type; });
+    if (it == by_type.end()) {
+      by_type.push_back({block.type, 0, kNaN, kNaN, kNaN});
+      it = std::prev(by_type.end());
+    }
+    const std::size_t end = offset + block.n_cells();
+    it->n_cells += block.n_cells();
+    if (r.has_input) it->min_quality = finite_min(r.quality, offset, end, it->min_quality);
+    it->min_shape_quality = finite_min(r.shape_quality, offset, end, it->min_shape_quality);
+    it->min_scaled_jacobian = finite_min(r.scaled_jacobian, offset, end, it->min_scaled_jacobian);
+    offset = end;
+  }
+  std::sort(by_type.begin(), by_type.end(), [](const CellTypeQuality& a, const CellTypeQuality& b) { return a.type < b.type; });
+  return by_type;
 }
 
 }  // namespace
@@ -125,10 +153,8 @@ QualityReport quality_report(const Mesh& current, const Mesh* input) {
   } else {
     r.min_quality = r.mean_quality = kNaN;
   }
-  r.min_scaled_jacobian = kNaN;
-  for (double s : r.scaled_jacobian) {
-    if (std::isfinite(s)) r.min_scaled_jacobian = std::isnan(r.min_scaled_jacobian) ? s : std::min(r.min_scaled_jacobian, s);
-  }
+  r.min_scaled_jacobian = finite_min(r.scaled_jacobian, 0, r.n_cells, kNaN);
+  r.by_type = minima_by_type(current, r);
   injectivity(current, r);
   return r;
 }

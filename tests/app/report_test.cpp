@@ -107,6 +107,27 @@ TEST(Report, ReadsReportsWithoutTheInjectivityKeys) {
   EXPECT_EQ(r.nodes, 13522u);
 }
 
+TEST(Report, CellTypeMinimaFollowTheTimingsAndRoundTrip) {
+  Report in = sample_report();
+  in.cell_types = {{"tetrahedron", 120, 0.61, 0.4, 0.35}, {"prism", 48, 0.97, std::nullopt, 0.08}};
+  const auto j = report_to_json(in);
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  ASSERT_GE(keys.size(), 2u);
+  EXPECT_EQ(keys[keys.size() - 2], "timings");
+  EXPECT_EQ(keys.back(), "cell_types");
+  EXPECT_EQ(j["cell_types"].begin().key(), "tetrahedron");
+  EXPECT_EQ(j["cell_types"]["prism"]["elements"], 48);
+  EXPECT_EQ(j["cell_types"]["prism"]["min_quality"], 0.97);
+  EXPECT_TRUE(j["cell_types"]["prism"]["min_shape_quality"].is_null());
+  EXPECT_EQ(report_from_json(j, "r.json"), in);
+  // A report without them has no such key and reads back with none.
+  EXPECT_FALSE(report_to_json(sample_report()).contains("cell_types"));
+  auto bad = j;
+  bad["cell_types"]["prism"]["min_jacobian"] = 1.0;
+  EXPECT_THROW(report_from_json(bad, "r.json"), InputError);
+}
+
 TEST(Report, PeakMemoryIsPositive) {
   EXPECT_GT(peak_memory_mb(), 1.0);
   EXPECT_LT(peak_memory_mb(), 1e6);

@@ -10,6 +10,7 @@
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace {
@@ -29,6 +30,28 @@ BoundaryTargets bump(const Mesh& mesh, const Topology& topo, double height) {
     bc.target(up, v) += height * std::exp(-r2 / 0.02);
   }
   return bc;
+}
+
+// The result is valid, the Fixed nodes within `fixed_tolerance` of where they were (0: exactly
+// there) and, without the CVT step, the Prescribed nodes exactly on their targets.
+void expect_valid_far_field_in_place(const Mesh& mesh, const BoundaryTargets& bc, const DeformResult& r, bool cvt,
+                                     double fixed_tolerance) {
+  Mesh moved = mesh;
+  moved.x = r.x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u) << "cvt " << cvt;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+    const auto c = static_cast<Eigen::Index>(i);
+    if (bc.role[i] == NodeRole::Fixed) {
+      if (fixed_tolerance == 0.0) {
+        EXPECT_TRUE(r.x.col(c) == mesh.x.col(c)) << i;
+      } else {
+        EXPECT_LE((r.x.col(c) - mesh.x.col(c)).norm(), fixed_tolerance) << i;
+      }
+    }
+    if (bc.role[i] == NodeRole::Prescribed && !cvt) {
+      EXPECT_TRUE(r.x.col(c) == bc.target.col(c)) << i;
+    }
+  }
 }
 
 TEST(Deform, NoMotionLeavesTheMeshAlone) {
@@ -58,24 +81,9 @@ TEST(Deform, LargeBumpStaysValid) {
         o.cvt = cvt;
         const DeformResult r = deform(mesh, topo, bc, mesh.x, o);
         ASSERT_TRUE(r.converged) << r.message;
-        Mesh moved = mesh;
-        moved.x = r.x;
-        EXPECT_EQ(count_invalid_cells(moved), 0u) << "cvt " << cvt;
-        for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
-          const auto c = static_cast<Eigen::Index>(i);
-          // The far field stays, but for the curved facets under the design's rim, which
-          // follow the rim's corners (the bump's foot there: 0.3 e^(−12.5)).
-          if (bc.role[i] == NodeRole::Fixed) {
-            if (order == 1) {
-              EXPECT_TRUE(r.x.col(c) == mesh.x.col(c)) << i;
-            } else {
-              EXPECT_LE((r.x.col(c) - mesh.x.col(c)).norm(), 0.3 * std::exp(-0.25 / 0.02) * (1 + 1e-12)) << i;
-            }
-          }
-          if (bc.role[i] == NodeRole::Prescribed && !cvt) {
-            EXPECT_TRUE(r.x.col(c) == bc.target.col(c)) << i;
-          }
-        }
+        // The far field stays, but for the curved facets under the design's rim, which follow
+        // the rim's corners (the bump's foot there: 0.3 e^(−12.5)).
+        expect_valid_far_field_in_place(mesh, bc, r, cvt, order == 1 ? 0.0 : 0.3 * std::exp(-0.25 / 0.02) * (1 + 1e-12));
         if (cvt && mesh.dim == 2) {
           EXPECT_LT(r.cvt.spacing_ratio_after, r.cvt.spacing_ratio_before);
         }
@@ -177,6 +185,27 @@ TEST(Deform, NeedsADesignAndAFarField) {
   laplace.method = DeformMethod::Laplace;
   laplace.cvt = false;
   EXPECT_NO_THROW(deform(mesh, topo, no_far, mesh.x, laplace));
+}
+
+// The hybrid layer mesh (prisms and hexahedra under tetrahedra, pyramids between;
+// tests/data/hybrid_layer.geo): its bottom raised by the bump of height 0.3, whose highest
+// node (0.063) passes the layer's first row of prisms (0.033 thick). The extension carries
+// the layer up: valid, the far field in place, with and without the CVT step.
+TEST(Deform, AHybridLayerMeshFollowsABump) {
+  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  const Topology topo = build_topology(mesh);
+  const BoundaryTargets bc = bump(mesh, topo, 0.3);
+  Mesh raised = mesh;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (bc.role[i] == NodeRole::Prescribed) raised.x.col(static_cast<Eigen::Index>(i)) = bc.target.col(static_cast<Eigen::Index>(i));
+  ASSERT_GT(count_invalid_cells(raised), 0u) << "moving the bottom alone must invert cells";
+  for (bool cvt : {false, true}) {
+    DeformOptions o;
+    o.cvt = cvt;
+    const DeformResult r = deform(mesh, topo, bc, mesh.x, o);
+    ASSERT_TRUE(r.converged) << "cvt " << cvt << ": " << r.message;
+    expect_valid_far_field_in_place(mesh, bc, r, cvt, 0.0);
+  }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
 #include "methods/detail/fit_problem.h"
 
 namespace meshmorph {
@@ -298,6 +299,36 @@ TEST(Fit, TrimsTheMeshAndFitsTheNewBoundary) {
   moved.x = x;
   EXPECT_EQ(count_invalid_cells(moved), 0u);
   for (std::int32_t s : on) EXPECT_LE(std::abs(sigma.value(x.col(s))), 1e-9);
+}
+
+// The hybrid layer mesh (prisms and hexahedra under tetrahedra, pyramids between;
+// tests/data/hybrid_layer.geo): the inner nodes of the layer's top (z = 0.1, prisms' and
+// hexahedra's top faces and the pyramids' bases) fitted to the plane z = 0.13 against the
+// input's shapes, the boundary fixed: fitted to 1e-9, valid.
+TEST(Fit, FitsTheTopOfAHybridLayer) {
+  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  const Topology topo = build_topology(mesh);
+  const std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
+  std::vector<std::int32_t> top;
+  for (Eigen::Index i = 0; i < mesh.x.cols(); ++i)
+    if (std::abs(mesh.x(2, i) - 0.1) < 1e-12 && !fixed[static_cast<std::size_t>(3 * i)]) top.push_back(static_cast<std::int32_t>(i));
+  ASSERT_EQ(top.size(), 6u);
+  LevelSet plane;
+  plane.shape = PlaneLevelSet{Eigen::Vector3d(0.0, 0.0, 0.13), Eigen::Vector3d(0.0, 0.0, 1.0)};
+  std::vector<FitTerm> terms{{LevelSetFunction(plane, 3), top}};
+  FitOptions o;
+  o.eps_sigma = 1e-9;
+  o.target = TargetKind::Input;
+  Eigen::MatrixXd x = mesh.x;
+  const FitResult r = fit_to_level_sets(mesh, topo, terms, fixed, o, x);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_NEAR(r.fit_error0, 0.03, 1e-12);
+  EXPECT_LE(r.fit_error, 1e-9);
+  EXPECT_GT(r.min_det, 0.0);
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  for (std::int32_t s : top) EXPECT_NEAR(x(2, s), 0.13, 1e-9);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
 #include "methods/detail/untangle_problem.h"
 
 namespace meshmorph {
@@ -72,6 +73,19 @@ Mesh perturbed(Mesh mesh, int n, double amount) {
   return mesh;
 }
 
+// The untangled positions x make `mesh` valid, at a positive quality, with every boundary node
+// exactly on its target.
+void expect_valid_on_targets(const Mesh& mesh, const BoundaryTargets& bc, const UntangleResult& r, const Eigen::MatrixXd& x) {
+  Mesh moved = mesh;
+  moved.x = x;
+  EXPECT_EQ(count_invalid_cells(moved), 0u);
+  EXPECT_GT(r.min_quality, 0.0);
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (bc.role[i] != NodeRole::Free) {
+      EXPECT_EQ(x.col(static_cast<Eigen::Index>(i)), bc.target.col(static_cast<Eigen::Index>(i)));
+    }
+}
+
 struct Case {
   ElementType type;
   int order;
@@ -123,14 +137,7 @@ TEST_P(UntangleCases, RecoversAValidMeshFromATangledOne) {
     const UntangleResult r = untangler.solve(bc.target, x);
     EXPECT_GT(r.initial_inverted, 0u) << "the case must start tangled";
     ASSERT_TRUE(r.converged) << r.message;
-    Mesh moved = mesh;
-    moved.x = x;
-    EXPECT_EQ(count_invalid_cells(moved), 0u);
-    EXPECT_GT(r.min_quality, 0.0);
-    for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
-      if (bc.role[i] != NodeRole::Free) {
-        EXPECT_EQ(x.col(static_cast<Eigen::Index>(i)), bc.target.col(static_cast<Eigen::Index>(i)));
-      }
+    expect_valid_on_targets(mesh, bc, r, x);
     EXPECT_GT(r.history.size(), 1u);
     EXPECT_EQ(r.history.back().inverted, 0u);
     EXPECT_EQ(r.history.back().delta, 0.0) << "the last steps minimise the unregularized functional";
@@ -364,6 +371,39 @@ TEST(UntangleProblem, ThePredictorIsExactForAnAffineMotionOfTheBoundary) {
       const Eigen::Index col = static_cast<Eigen::Index>(i);
       EXPECT_LE((mesh.x.col(col) + increment.col(col) - affine(mesh.x.col(col))).norm(), 1e-10);
     }
+}
+
+// The hybrid layer mesh (prisms and hexahedra under tetrahedra, pyramids between;
+// tests/data/hybrid_layer.geo): its bottom raised by a bump of 0.105 at its highest node, more
+// than the 0.1 of the layer, tangles prisms and tetrahedra; untangle recovers a valid mesh
+// with the bottom on its targets.
+TEST(Untangle, RecoversAHybridLayerMesh) {
+  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  const Topology topo = build_topology(mesh);
+  const BoundaryTargets bc = boundary(
+      mesh, topo, [](const Eigen::VectorXd& x) { return std::abs(x(2)) < 1e-12; },
+      [](const Eigen::VectorXd& x) {
+        Eigen::VectorXd y = x;
+        y(2) += 0.5 * std::exp(-((x(0) - 0.5) * (x(0) - 0.5) + (x(1) - 0.5) * (x(1) - 0.5)) / 0.02);
+        return y;
+      });
+  Mesh tangled = mesh;
+  for (std::size_t i = 0; i < mesh.n_nodes(); ++i)
+    if (bc.role[i] == NodeRole::Prescribed) tangled.x.col(static_cast<Eigen::Index>(i)) = bc.target.col(static_cast<Eigen::Index>(i));
+  std::size_t inverted_prisms = 0;
+  for (const CellBlock& b : tangled.cells)
+    if (b.type == ElementType::Prism)
+      for (std::size_t c = 0; c < b.n_cells(); ++c)
+        inverted_prisms += min_jacobian_det(b.type, b.order, cell_coordinates(tangled, b, c)) <= 0.0;
+  ASSERT_GT(inverted_prisms, 0u) << "the case must tangle the layer";
+  UntangleOptions o;
+  o.solver = LinearSolverKind::Cholesky;
+  Untangler untangler(mesh, topo, bc, o);
+  Eigen::MatrixXd x = mesh.x;
+  const UntangleResult r = untangler.solve(bc.target, x);
+  EXPECT_GE(r.initial_inverted, inverted_prisms);
+  ASSERT_TRUE(r.converged) << r.message;
+  expect_valid_on_targets(mesh, bc, r, x);
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/quality/quality_report.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include <Eigen/LU>
@@ -9,6 +12,7 @@
 
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 namespace {
@@ -60,6 +64,46 @@ TEST(QualityReport, AffineMotionGivesTheClosedFormQuality) {
     EXPECT_NEAR(r.min_quality, 1.0 / eta0(M), 1e-12) << name_of(t);
     EXPECT_NEAR(r.mean_quality, 1.0 / eta0(M), 1e-12) << name_of(t);
   }
+}
+
+// The hybrid layer mesh (hexahedra, prisms, pyramids, tetrahedra; tests/data/hybrid_layer.geo)
+// under an affine map M: every cell of every type has T = M, so q = 1/η₀(M) per type; the
+// shape minima are those of the per-cell arrays over each type's cells.
+TEST(QualityReport, MinimaPerCellType) {
+  const Mesh input = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/hybrid_layer.msh");
+  Mesh current = input;
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  M(0, 0) = 1.5;
+  M(1, 2) = 0.4;
+  current.x = M * input.x;
+  const QualityReport r = quality_report(current, &input);
+  const std::vector<ElementType> types = {ElementType::Tetrahedron, ElementType::Hexahedron, ElementType::Prism,
+                                          ElementType::Pyramid};
+  ASSERT_EQ(r.by_type.size(), types.size());
+  std::size_t offset = 0, total = 0;
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    const CellTypeQuality& t = r.by_type[k];
+    EXPECT_EQ(t.type, types[k]);
+    EXPECT_NEAR(t.min_quality, 1.0 / eta0(M), 1e-12) << name_of(t.type);
+    double shape = 1.0, sj = 1.0;
+    std::size_t n = 0;
+    offset = 0;
+    for (const CellBlock& b : current.cells) {
+      for (std::size_t c = 0; c < b.n_cells() && b.type == t.type; ++c, ++n) {
+        shape = std::min(shape, r.shape_quality[offset + c]);
+        sj = std::min(sj, r.scaled_jacobian[offset + c]);
+      }
+      offset += b.n_cells();
+    }
+    EXPECT_GT(n, 0u);
+    EXPECT_EQ(t.n_cells, n) << name_of(t.type);
+    EXPECT_EQ(t.min_shape_quality, shape) << name_of(t.type);
+    EXPECT_EQ(t.min_scaled_jacobian, sj) << name_of(t.type);
+    total += n;
+  }
+  EXPECT_EQ(total, r.n_cells);
+  const QualityReport alone = quality_report(current);
+  for (const CellTypeQuality& t : alone.by_type) EXPECT_TRUE(std::isnan(t.min_quality)) << name_of(t.type);
 }
 
 TEST(QualityReport, InvertedCellsCountAndScoreZero) {

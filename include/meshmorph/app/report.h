@@ -22,6 +22,16 @@ struct IterationCounts {
   bool operator==(const IterationCounts&) const = default;
 };
 
+/// The minima over the cells of one type (JSON "cell_types": {"prism": {...}, ...}).
+struct CellTypeMinima {
+  std::string type;  ///< "tetrahedron", "prism", ... (mesh/element_type.h, name_of)
+  std::size_t elements = 0;
+  std::optional<double> min_quality;  ///< against the input mesh
+  std::optional<double> min_shape_quality;
+  std::optional<double> min_scaled_jacobian;
+  bool operator==(const CellTypeMinima&) const = default;
+};
+
 /// One row of "history": named values in the order given, written as a JSON object.
 using HistoryRow = std::vector<std::pair<std::string, double>>;
 
@@ -61,6 +71,10 @@ struct Report {
   /// Seconds per phase (JSON "timings", after "history"); reports written without them read
   /// back as none.
   std::optional<Timings> timings;
+  /// min_quality, min_shape_quality and min_scaled_jacobian per cell type, in the quality
+  /// report's order (JSON "cell_types", after "timings"; written when not empty). Reports
+  /// written without them read back as empty.
+  std::vector<CellTypeMinima> cell_types;
 
   bool operator==(const Report&) const = default;
 };

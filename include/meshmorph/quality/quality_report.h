@@ -10,6 +10,18 @@
 
 namespace meshmorph {
 
+/// The minima of QualityReport over the cells of one type (all its blocks, any order), e.g. a
+/// boundary layer's prisms apart from the tetrahedra around them. NaN where the whole
+/// report's value is (min_quality without an input mesh), and min_scaled_jacobian where no
+/// cell of the type has a finite value.
+struct CellTypeQuality {
+  ElementType type = ElementType::Tetrahedron;
+  std::size_t n_cells = 0;
+  double min_quality = 0.0;
+  double min_shape_quality = 0.0;
+  double min_scaled_jacobian = 0.0;
+};
+
 /// Mesh quality summary and per-cell values (DESIGN §3.3 names). "Not available" values
 /// (no input mesh, no cells) are NaN; a JSON writer emits them as null. Per-cell arrays
 /// follow the global cell order (blocks of Mesh::cells concatenated, as Topology does) and
@@ -49,6 +61,8 @@ struct QualityReport {
   /// `shape_quality`.
   std::array<std::size_t, 10> quality_histogram{};
   std::array<std::size_t, 10> shape_histogram{};
+  /// One entry per cell type of the mesh, in ElementType order.
+  std::vector<CellTypeQuality> by_type;
   std::vector<double> quality;          ///< per cell, against the input (empty without input)
   std::vector<double> shape_quality;    ///< per cell, against the ideal element
   std::vector<double> scaled_jacobian;  ///< per cell (NaN for non-finite coordinates)
