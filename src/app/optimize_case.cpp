@@ -137,7 +137,8 @@ RunOutput OptimizeRunner::run() const {
   if (degree == 0)
     for (const CellBlock& b : input_.cells) degree = std::max(degree, metric_quadrature_degree(b.type, b.order));
   extra["quadrature"] = std::string(options.quadrature == QuadratureFamily::Lobatto ? "Gauss-Lobatto" : "Gauss") +
-                        " products on tensor cells, symmetric rules on simplices, degree " + std::to_string(degree);
+                        " products on tensor cells and prisms, symmetric rules on simplices, degree " +
+                        std::to_string(degree);
   extra["initial_inverted_elements"] = initial_inverted_;
   extra["untangle_newton"] = untangle_newton_;
   extra["slide_nodes"] = constraints_.slide_nodes;

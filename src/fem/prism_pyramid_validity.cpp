@@ -13,6 +13,7 @@
 #include "fem/detail/bezier_validity.h"
 #include "fem/detail/pyramid_functions.h"
 #include "meshmorph/fem/lagrange_basis.h"
+#include "meshmorph/fem/shape_table.h"
 
 namespace meshmorph::detail {
 namespace {
@@ -47,6 +48,7 @@ struct PrismExpansion {
   Eigen::MatrixXd tri;        ///< 2 × n_tri: the triangle's lattice (unit triangle)
   Eigen::MatrixXd tri_inv;    ///< n_tri × n_tri: values → coefficients on the triangle
   Eigen::MatrixXd line_inv;   ///< (qb+1) × (qb+1): the same on the segment
+  ShapeTable root;            ///< the basis at the whole prism's lattice (triangle index fastest)
 };
 
 std::unique_ptr<PrismExpansion> make_expansion(int order) {
@@ -65,6 +67,10 @@ std::unique_ptr<PrismExpansion> make_expansion(int order) {
     }
   e->tri_inv = M.inverse();
   e->line_inv = segment_inverse(qb);
+  Eigen::MatrixXd points(3, n * (qb + 1));
+  for (int k = 0; k <= qb; ++k)
+    for (Eigen::Index i = 0; i < n; ++i) points.col(k * n + i) << e->tri.col(i), -1.0 + 2.0 * k / qb;
+  e->root = tabulate(ElementType::Prism, order, points);
   return e;
 }
 
@@ -85,16 +91,22 @@ struct Piece {
   int depth = 0;
 };
 
-// det A at the piece's lattice (triangle index fastest), NaN as −∞.
+// det A at the piece's lattice (triangle index fastest), NaN as −∞; the whole prism's from
+// the tabulated basis, its pieces' from the basis evaluated there.
 Eigen::MatrixXd piece_dets(const PrismExpansion& e, const LagrangeBasis& basis, const Eigen::MatrixXd& X, const Piece& s) {
   Eigen::MatrixXd v(e.tri.cols(), e.qb + 1);
   Eigen::Vector3d xi;
-  for (int k = 0; k <= e.qb; ++k)
-    for (Eigen::Index i = 0; i < e.tri.cols(); ++i) {
-      const double l1 = e.tri(0, i), l2 = e.tri(1, i);
-      xi.head<2>() = (1 - l1 - l2) * s.tri.col(0) + l1 * s.tri.col(1) + l2 * s.tri.col(2);
-      xi(2) = s.z0 + (s.z1 - s.z0) * k / e.qb;
-      const double det = Eigen::Matrix3d(X * basis.gradients(xi)).determinant();
+  for (int k = 0, p = 0; k <= e.qb; ++k)
+    for (Eigen::Index i = 0; i < e.tri.cols(); ++i, ++p) {
+      double det = 0.0;
+      if (s.depth == 0) {
+        det = Eigen::Matrix3d(X.lazyProduct(e.root.grad(p))).determinant();
+      } else {
+        const double l1 = e.tri(0, i), l2 = e.tri(1, i);
+        xi.head<2>() = (1 - l1 - l2) * s.tri.col(0) + l1 * s.tri.col(1) + l2 * s.tri.col(2);
+        xi(2) = s.z0 + (s.z1 - s.z0) * k / e.qb;
+        det = Eigen::Matrix3d(X * basis.gradients(xi)).determinant();
+      }
       v(i, k) = det > -std::numeric_limits<double>::infinity() ? det : -std::numeric_limits<double>::infinity();
     }
   return v;

@@ -20,11 +20,11 @@ struct Rule1d {
   Eigen::VectorXd x, w;
 };
 
-// n-point Gauss–Jacobi rule for the weight (1 − t)^α on [0, 1] by Golub–Welsch: the nodes
-// are the eigenvalues of the Jacobi matrix of the orthogonal polynomials of (1−x)^α on
-// [−1, 1], the weights μ₀ times the squared first eigenvector components.
-Rule1d gauss_jacobi(int n, int alpha) {
-  const double a = alpha, b = 0.0;
+// n-point Gauss–Jacobi rule for the weight (1 − t)^α t^β on [0, 1] by Golub–Welsch: the
+// nodes are the eigenvalues of the Jacobi matrix of the orthogonal polynomials of
+// (1 − x)^α (1 + x)^β on [−1, 1], the weights μ₀ times the squared first eigenvector components.
+Rule1d gauss_jacobi(int n, int alpha, int beta = 0) {
+  const double a = alpha, b = beta;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
   for (int i = 0; i < n; ++i) {
     const double s = 2.0 * i + a + b;
@@ -35,12 +35,37 @@ Rule1d gauss_jacobi(int n, int alpha) {
     }
   }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J);
-  const double mu0 = std::pow(2.0, a + b + 1) / (a + b + 1);  // ∫ (1−x)^α dx on [−1, 1], β = 0
+  // ∫ (1 − t)^α t^β dt on [0, 1] = α! β! / (α + β + 1)!
+  const auto factorial = [](int k) {
+    double f = 1.0;
+    for (int i = 2; i <= k; ++i) f *= i;
+    return f;
+  };
+  const double mu0 = factorial(alpha) * factorial(beta) / factorial(alpha + beta + 1);
   Rule1d r{Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (int i = 0; i < n; ++i) {
     r.x(i) = (eig.eigenvalues()(i) + 1) / 2;  // to [0, 1]
-    r.w(i) = mu0 * eig.eigenvectors()(0, i) * eig.eigenvectors()(0, i) / std::pow(2.0, a + 1);
+    r.w(i) = mu0 * eig.eigenvectors()(0, i) * eig.eigenvectors()(0, i);
   }
+  return r;
+}
+
+// n-point Gauss–Lobatto–Jacobi rule for the weight 1 − t on [0, 1]: 0, 1 and the zeros of the
+// Jacobi polynomial of (1 − t)² t, exact to degree 2n − 3; each weight is ∫ ℓ_i(t)(1 − t) dt
+// of the node's Lagrange polynomial, by the n-point Gauss–Jacobi rule (exact to 2n − 1).
+Rule1d gauss_lobatto_jacobi(int n) {
+  Rule1d r{Eigen::VectorXd(n), Eigen::VectorXd::Zero(n)};
+  r.x(0) = 0.0;
+  r.x(n - 1) = 1.0;
+  if (n > 2) r.x.segment(1, n - 2) = gauss_jacobi(n - 2, 2, 1).x;
+  const Rule1d g = gauss_jacobi(n, 1);
+  for (int i = 0; i < n; ++i)
+    for (int q = 0; q < n; ++q) {
+      double l = g.w(q);
+      for (int j = 0; j < n; ++j)
+        if (j != i) l *= (g.x(q) - r.x(j)) / (r.x(i) - r.x(j));
+      r.w(i) += l;
+    }
   return r;
 }
 
@@ -91,6 +116,26 @@ QuadratureRule tensor_rule(QuadratureRule q, const Rule1d& g, int n, int dim) {
 
 QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family);
 
+// Prism, Lobatto: the collapsed triangle ξ = s(1 − t), η = t with m Gauss–Lobatto points in s
+// and m Gauss–Lobatto–Jacobi points of weight 1 − t in t (exact to 2m − 3 in both, so to
+// total degree 2m − 3 in (ξ, η)), the m points at t = 1 joined at the corner (0, 1), times m
+// Gauss–Lobatto points in ζ: the corners, edges and faces of the prism are among the points,
+// where the μ barrier must act as on hexahedra (positive weights, not symmetric).
+QuadratureRule lobatto_prism_rule(QuadratureRule q, int m) {
+  const Rule1d s = gauss_lobatto(m), t = gauss_lobatto_jacobi(m), z = gauss_lobatto(m);
+  const int n_tri = m * (m - 1) + 1;
+  q.points.resize(3, n_tri * m);
+  q.weights.resize(n_tri * m);
+  for (int k = 0, p = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < (j + 1 < m ? m : 1); ++i, ++p) {
+        const bool corner = j + 1 == m;  // t = 1: one point of weight Σ_i w_i = 1 times t's
+        q.points.col(p) << (corner ? 0.0 : s.x(i) * (1 - t.x(j))), t.x(j), 2 * z.x(k) - 1;
+        q.weights(p) = (corner ? 1.0 : s.w(i)) * t.w(j) * 2 * z.w(k);
+      }
+  return q;
+}
+
 // Prism: the triangle's rule of the same degree times n Gauss points in ζ. Pyramid: the
 // collapse ξ = u(1 − ζ), η = v(1 − ζ) of the cube [−1, 1]² × [0, 1], Gauss in u and v and
 // Gauss–Jacobi of weight (1 − ζ)² (the collapse's Jacobian) in ζ, with one point more in ζ,
@@ -131,10 +176,12 @@ QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) 
     q.weights = Eigen::VectorXd::Ones(1);
     return q;
   }
+  const int m_lobatto = std::max(2, (std::max(degree, 0) + 4) / 2);  // Lobatto: exact to 2m − 3
+  if (type == ElementType::Prism && family == QuadratureFamily::Lobatto) return lobatto_prism_rule(q, m_lobatto);
   if (type == ElementType::Prism || type == ElementType::Pyramid) return prism_or_pyramid_rule(q, n);
   if (is_tensor(type) || type == ElementType::Line) {  // Gauss–Legendre (–Lobatto) on [−1, 1]^d
     const bool lobatto = family == QuadratureFamily::Lobatto;
-    const int m = lobatto ? std::max(2, (std::max(degree, 0) + 4) / 2) : n;  // Lobatto: exact to 2m − 3
+    const int m = lobatto ? m_lobatto : n;
     const auto g = lobatto ? gauss_lobatto(m) : gauss_jacobi(m, 0);
     return tensor_rule(q, g, m, dim);
   }
@@ -177,7 +224,8 @@ QuadratureRule make_rule(ElementType type, int degree, QuadratureFamily family) 
 
 const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family) {
   MESHMORPH_CHECK(degree >= 0 && degree <= 40, "quadrature degree out of range");
-  if (!is_tensor(type) && type != ElementType::Line) family = QuadratureFamily::Gauss;  // one rule per simplex, prism, pyramid
+  if (!is_tensor(type) && type != ElementType::Line && type != ElementType::Prism)
+    family = QuadratureFamily::Gauss;  // one rule per simplex and pyramid
   static std::mutex mutex;
   static std::map<std::tuple<ElementType, int, QuadratureFamily>, std::unique_ptr<QuadratureRule>> cache;
   std::lock_guard lock(mutex);

@@ -25,13 +25,51 @@ Eigen::MatrixXd from_lattice(const std::array<std::array<int, D>, N>& lattice, i
   return X;
 }
 
-// Gmsh's prism (P1, and the complete 18-node P2: type 13) and pyramid (P1: 7, P2: 14), as
-// gmsh::model::mesh::getElementProperties gives them: the triangle (u, v) × w ∈ [−1, 1]; the
-// base [−1, 1]² at w = 0 with the apex at (0, 0, 1). P2 prism: corners, the edges (0 1) (0 2)
-// (0 3) (1 2) (1 4) (2 5) (3 4) (3 5) (4 5), the quadrilateral faces (0 1 4 3) (0 2 5 3) (1 2 5 4).
-constexpr double k_prism2[18][3] = {{0, 0, -1},  {1, 0, -1},  {0, 1, -1},  {0, 0, 1},   {1, 0, 1},   {0, 1, 1},
-                                    {.5, 0, -1}, {0, .5, -1}, {0, 0, 0},   {.5, .5, -1}, {1, 0, 0},   {0, 1, 0},
-                                    {.5, 0, 1},  {0, .5, 1},  {.5, .5, 1}, {.5, 0, 0},  {0, .5, 0},  {.5, .5, 0}};
+// Gmsh's complete prism of order p (types 6, 13, 90, 91) as lattice points (i, j, k), k along
+// w: corners, the interior of the edges (0 1) (0 2) (0 3) (1 2) (1 4) (2 5) (3 4) (3 5) (4 5),
+// then the faces (0 2 1) (3 4 5) (0 1 4 3) (0 3 5 2) (1 2 5 4), each the triangle of order
+// p − 3 or the quadrilateral of order p − 2 in its own node order, shifted one step in and laid
+// along the face's first and last-but-one edge, then the body: the triangle of order p − 3 times
+// the segment of order p − 2, the segment fastest. Gmsh 4.8.4's getElementProperties refuses
+// types 90 and 91; the meshes it writes of them put their nodes there (tests/data/io).
+Eigen::MatrixXd gmsh_nodes(ElementType type, int p);
+
+std::vector<std::array<int, 3>> prism_lattice(int p) {
+  const std::array<std::array<int, 3>, 6> c{{{0, 0, 0}, {p, 0, 0}, {0, p, 0}, {0, 0, p}, {p, 0, p}, {0, p, p}}};
+  std::vector<std::array<int, 3>> out(c.begin(), c.end());
+  if (p < 2) return out;
+  const auto along = [&](int a, int b, int i, int j, int d) {  // c[a] + (i (c[b] − c[a]) + j (c[d] − c[a])) / p
+    std::array<int, 3> q{};
+    for (std::size_t k = 0; k < 3; ++k) q[k] = c[a][k] + (i * (c[b][k] - c[a][k]) + j * (c[d][k] - c[a][k])) / p;
+    return q;
+  };
+  constexpr int edges[9][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 4}, {2, 5}, {3, 4}, {3, 5}, {4, 5}};
+  for (const auto& e : edges)
+    for (int i = 1; i < p; ++i) out.push_back(along(e[0], e[1], i, 0, e[0]));
+  // A facet's own lattice of order q (Gmsh's node order), as integer (i, j) (Point: order 0).
+  const auto facet = [](ElementType t, int q) {
+    std::vector<std::array<int, 2>> pts;
+    if (q == 0) return std::vector<std::array<int, 2>>{{0, 0}};
+    const Eigen::MatrixXd X = gmsh_nodes(t, q);
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      const auto at = [&](double x) { return static_cast<int>(std::lround(t == ElementType::Triangle ? x * q : (x + 1) * q / 2)); };
+      pts.push_back({at(X(0, j)), t == ElementType::Line ? 0 : at(X(1, j))});
+    }
+    return pts;
+  };
+  constexpr int faces[5][4] = {{0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {0, 3, 5, 2}, {1, 2, 5, 4}};
+  for (const auto& f : faces) {
+    const bool quad = f[3] >= 0;
+    if (!quad && p < 3) continue;
+    for (const auto& ij : facet(quad ? ElementType::Quadrilateral : ElementType::Triangle, quad ? p - 2 : p - 3))
+      out.push_back(along(f[0], f[1], ij[0] + 1, ij[1] + 1, quad ? f[3] : f[2]));
+  }
+  if (p < 3) return out;
+  for (const auto& ij : facet(ElementType::Triangle, p - 3))
+    for (const auto& k : facet(ElementType::Line, p - 2)) out.push_back({ij[0] + 1, ij[1] + 1, k[0] + 1});
+  return out;
+}
+
 // P2 pyramid (type 14): corners, the edges (0 1) (0 3) (0 4) (1 2) (1 4) (2 3) (2 4) (3 4), the
 // base's centre.
 constexpr double k_pyramid2[14][3] = {{-1, -1, 0}, {1, -1, 0},    {1, 1, 0},    {-1, 1, 0}, {0, 0, 1},
@@ -74,7 +112,13 @@ Eigen::MatrixXd gmsh_nodes(ElementType type, int p) {
                               from_lattice(k_hexahedron3, 3, false), from_lattice(k_hexahedron4, 4, false)};
       return tables[static_cast<std::size_t>(p - 1)];
     }
-    case ElementType::Prism: return table_nodes(k_prism2, n_nodes_of(type, p));
+    case ElementType::Prism: {
+      const auto lattice = prism_lattice(p);
+      Eigen::MatrixXd X(3, static_cast<Eigen::Index>(lattice.size()));
+      for (std::size_t j = 0; j < lattice.size(); ++j)
+        X.col(static_cast<Eigen::Index>(j)) << double(lattice[j][0]) / p, double(lattice[j][1]) / p, 2.0 * lattice[j][2] / p - 1.0;
+      return X;
+    }
     case ElementType::Pyramid: return table_nodes(k_pyramid2, n_nodes_of(type, p));
   }
   return {};

@@ -15,14 +15,15 @@ struct Entry {
 };
 
 // GmshDefines.h numbers of the complete Lagrange elements of our families.
-constexpr std::array<Entry, 25> k_types{{
+constexpr std::array<Entry, 27> k_types{{
     {15, ElementType::Point, 1},
     {1, ElementType::Line, 1}, {8, ElementType::Line, 2}, {26, ElementType::Line, 3}, {27, ElementType::Line, 4},
     {2, ElementType::Triangle, 1}, {9, ElementType::Triangle, 2}, {21, ElementType::Triangle, 3}, {23, ElementType::Triangle, 4},
     {3, ElementType::Quadrilateral, 1}, {10, ElementType::Quadrilateral, 2}, {36, ElementType::Quadrilateral, 3}, {37, ElementType::Quadrilateral, 4},
     {4, ElementType::Tetrahedron, 1}, {11, ElementType::Tetrahedron, 2}, {29, ElementType::Tetrahedron, 3}, {30, ElementType::Tetrahedron, 4},
     {5, ElementType::Hexahedron, 1}, {12, ElementType::Hexahedron, 2}, {92, ElementType::Hexahedron, 3}, {93, ElementType::Hexahedron, 4},
-    {6, ElementType::Prism, 1}, {13, ElementType::Prism, 2}, {7, ElementType::Pyramid, 1}, {14, ElementType::Pyramid, 2},
+    {6, ElementType::Prism, 1}, {13, ElementType::Prism, 2}, {90, ElementType::Prism, 3}, {91, ElementType::Prism, 4},
+    {7, ElementType::Pyramid, 1}, {14, ElementType::Pyramid, 2},
 }};
 
 }  // namespace

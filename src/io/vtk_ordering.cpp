@@ -137,11 +137,13 @@ std::vector<P3> lattice(ElementType type, int p) {
           for (int i = 1; i < p; ++i) out.push_back({i, j, k});
       break;
     }
-    case ElementType::Prism: {  // VTK's Lagrange wedge, up to order 2 (no face or body nodes inside triangles)
+    case ElementType::Prism: {  // VTK's Lagrange wedge (checked against VTK 9.1 to order 4)
       const std::array<P3, 6> c{P3{0, 0, 0}, P3{p, 0, 0}, P3{0, p, 0}, P3{0, 0, p}, P3{p, 0, p}, P3{0, p, p}};
       for (const P3& corner : c) out.push_back(corner);
       constexpr int edges[9][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
       for (const auto& e : edges) edge(out, c[e[0]], c[e[1]], p);
+      triangle_face(out, c[0], c[1], c[2], p);  // both triangles counterclockwise seen from above
+      triangle_face(out, c[3], c[4], c[5], p);
       constexpr int faces[3][4] = {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};  // bilinear from corner 0 of each
       for (const auto& f : faces)
         for (int j = 1; j < p; ++j)
@@ -151,6 +153,10 @@ std::vector<P3> lattice(ElementType type, int p) {
               q[k] = ((p - j) * ((p - i) * c[f[0]][k] + i * c[f[1]][k]) + j * ((p - i) * c[f[3]][k] + i * c[f[2]][k])) / (p * p);
             out.push_back(q);
           }
+      std::vector<P3> inside;  // the base triangle's interior at each level, the triangle fastest
+      triangle_face(inside, c[0], c[1], c[2], p);
+      for (int k = 1; k < p; ++k)
+        for (const P3& q : inside) out.push_back({q[0], q[1], k});
       break;
     }
     case ElementType::Pyramid:  // linear only: base, then apex (VTK's apex is above corner 0 in its pcoords)

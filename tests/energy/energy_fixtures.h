@@ -46,11 +46,14 @@ inline Eigen::MatrixXd random_element(ElementType type, int order, unsigned seed
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const int d = ref.dim;
   const double size = is_simplex(type) ? 1.0 : 0.5;  // tensor references span [−1, 1]
+  // Prisms above order 2: the nodes move by `amplitude`/order of their unit triangle, not of
+  // the half-size one (at 0.2/4 of the half-size triangle no random quartic prism is valid).
+  const double step = type == ElementType::Prism && order > 2 ? size * amplitude / order : amplitude / order;
   for (;;) {
     Eigen::MatrixXd M(d, d);
     for (int i = 0; i < d * d; ++i) M(i) = (i % (d + 1) == 0 ? 1.0 : 0.0) + 0.25 * u(rng);
     Eigen::MatrixXd X = size * M * ref.nodes;
-    for (Eigen::Index i = 0; i < X.size(); ++i) X(i) += amplitude / order * u(rng);
+    for (Eigen::Index i = 0; i < X.size(); ++i) X(i) += step * u(rng);
     for (int k = 0; k < d; ++k) X.row(k).array() += u(rng);
     if (min_jacobian_det(type, order, X) > 0.0) return X;
   }

@@ -136,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(CurvedCells, BezierValidity, ::testing::ValuesIn(curved
 // Prisms: the coefficients on the triangle × segment Bernstein basis sum to det A; a prism whose
 // det A dips below zero between its samples along ζ (its top twisted against its base) is found.
 TEST(BezierValidity, PrismCoefficientsSumToTheDeterminantAndCatchADip) {
-  for (const int order : {1, 2}) {
+  for (int order = 1; order <= max_order_of(ElementType::Prism); ++order) {
     const auto mesh = structured_mesh(ElementType::Prism, order, 1);
     const auto& b = mesh.cells[0];
     std::srand(7);

@@ -42,6 +42,10 @@ TEST_P(ElevateSweep, SharesNodesBetweenNeighboursAndPlacesThemOnTheLattice) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCells, ElevateSweep, ::testing::ValuesIn(test::all_cell_cases()), test::CaseName());
+INSTANTIATE_TEST_SUITE_P(Prisms, ElevateSweep,
+                         ::testing::Values(ElementCase{ElementType::Prism, 1}, ElementCase{ElementType::Prism, 2},
+                                           ElementCase{ElementType::Prism, 3}, ElementCase{ElementType::Prism, 4}),
+                         test::CaseName());
 
 TEST(Elevate, InStepsEqualsAtOnce) {
   for (auto type : {ElementType::Triangle, ElementType::Quadrilateral, ElementType::Tetrahedron, ElementType::Hexahedron}) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "meshmorph/fem/reference_element.h"
+
 namespace meshmorph {
 namespace {
 
@@ -77,6 +79,42 @@ TEST(QuadratureRule, PrismAndPyramidRulesAreExact) {
   }
   EXPECT_NEAR(quadrature_rule(ElementType::Prism, 3).weights.sum(), 1.0, 1e-14);
   EXPECT_NEAR(quadrature_rule(ElementType::Pyramid, 3).weights.sum(), 4.0 / 3.0, 1e-14);
+}
+
+// The Lobatto prism rule (the collapsed triangle's Gauss–Lobatto(–Jacobi) product times
+// Gauss–Lobatto in ζ): exact as the Gauss one, positive weights, the six corners among its points.
+TEST(QuadratureRule, LobattoPrismRuleIsExactAndHoldsTheCorners) {
+  for (int degree = 0; degree <= 10; ++degree) {
+    const auto& prism = quadrature_rule(ElementType::Prism, degree, QuadratureFamily::Lobatto);
+    EXPECT_TRUE((prism.weights.array() > 0).all()) << degree;
+    for (int a = 0; a <= degree; ++a)
+      for (int b = 0; a + b <= degree; ++b)
+        for (int c = 0; c <= degree; ++c) {
+          const double tri = exact_monomial(ElementType::Triangle, a, b, 0), line = exact_monomial(ElementType::Line, c, 0, 0);
+          EXPECT_NEAR(integrate_monomial(prism, a, b, c), tri * line, 1e-13) << degree << ": " << a << b << c;
+        }
+    const Eigen::MatrixXd& corners = reference_element(ElementType::Prism, 1).nodes;
+    for (int i = 0; i < 6; ++i) {
+      bool found = false;
+      for (int p = 0; p < prism.n_points(); ++p) found = found || (prism.points.col(p) - corners.col(i)).norm() < 1e-15;
+      EXPECT_TRUE(found) << degree << ": corner " << i;
+    }
+  }
+}
+
+// The prism rules of degree 9 (2p + 1 for quartic prisms; cubic ones take 7, above) and 10,
+// exact as above.
+TEST(QuadratureRule, PrismRulesAreExactToTheDegreesOfOrdersThreeAndFour) {
+  for (const int degree : {9, 10}) {
+    const auto& prism = quadrature_rule(ElementType::Prism, degree);
+    EXPECT_TRUE((prism.weights.array() > 0).all());
+    for (int a = 0; a <= degree; ++a)
+      for (int b = 0; a + b <= degree; ++b)
+        for (int c = 0; c <= degree; ++c) {
+          const double tri = exact_monomial(ElementType::Triangle, a, b, 0), line = exact_monomial(ElementType::Line, c, 0, 0);
+          EXPECT_NEAR(integrate_monomial(prism, a, b, c), tri * line, 1e-13) << degree << ": " << a << b << c;
+        }
+  }
 }
 
 // Gauss–Lobatto products: exact to their degree in each variable, the corners of the cell

@@ -203,5 +203,51 @@ TEST(VtkOrdering, PrismAndPyramidFollowGmshAndVtk) {
   }
 }
 
+// Prisms of orders 3 and 4 (Gmsh 90 and 91): the reference nodes sit where the prism that Gmsh
+// 4.8.4 meshes of the reference prism puts them (tests/data/io), and each VTK node where VTK
+// 9.1's vtkLagrangeWedge of that order puts its parametric point (GetParametricCoords × p).
+TEST(VtkOrdering, CubicAndQuarticPrismsFollowGmshAndVtk) {
+  std::ifstream in(std::string(MESHMORPH_TEST_DATA) + "/io/gmsh_prism_pyramid_reference.json");
+  ASSERT_TRUE(in);
+  const nlohmann::json data = nlohmann::json::parse(in);
+  for (const auto& [code, order] : {std::pair{"90", 3}, std::pair{"91", 4}}) {
+    SCOPED_TRACE(code);
+    const auto gmsh = data.at("cells").at(code).at("gmsh_ref_coords").get<std::vector<std::vector<double>>>();
+    const Eigen::MatrixXd& nodes = reference_element(ElementType::Prism, order).nodes;
+    ASSERT_EQ(static_cast<std::size_t>(nodes.cols()), gmsh.size());
+    for (std::size_t i = 0; i < gmsh.size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(nodes(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)), gmsh[i][k], 1e-10) << i;
+  }
+  const std::vector<std::vector<std::array<int, 3>>> vtk_wedges{
+      {{0, 0, 0}, {3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {3, 0, 3}, {0, 3, 3}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0},
+       {1, 2, 0}, {0, 2, 0}, {0, 1, 0}, {1, 0, 3}, {2, 0, 3}, {2, 1, 3}, {1, 2, 3}, {0, 2, 3}, {0, 1, 3},
+       {0, 0, 1}, {0, 0, 2}, {3, 0, 1}, {3, 0, 2}, {0, 3, 1}, {0, 3, 2}, {1, 1, 0}, {1, 1, 3}, {1, 0, 1},
+       {2, 0, 1}, {1, 0, 2}, {2, 0, 2}, {2, 1, 1}, {1, 2, 1}, {2, 1, 2}, {1, 2, 2}, {0, 2, 1}, {0, 1, 1},
+       {0, 2, 2}, {0, 1, 2}, {1, 1, 1}, {1, 1, 2}},
+      {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}, {4, 0, 4}, {0, 4, 4}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0},
+       {3, 1, 0}, {2, 2, 0}, {1, 3, 0}, {0, 3, 0}, {0, 2, 0}, {0, 1, 0}, {1, 0, 4}, {2, 0, 4}, {3, 0, 4},
+       {3, 1, 4}, {2, 2, 4}, {1, 3, 4}, {0, 3, 4}, {0, 2, 4}, {0, 1, 4}, {0, 0, 1}, {0, 0, 2}, {0, 0, 3},
+       {4, 0, 1}, {4, 0, 2}, {4, 0, 3}, {0, 4, 1}, {0, 4, 2}, {0, 4, 3}, {1, 1, 0}, {2, 1, 0}, {1, 2, 0},
+       {1, 1, 4}, {2, 1, 4}, {1, 2, 4}, {1, 0, 1}, {2, 0, 1}, {3, 0, 1}, {1, 0, 2}, {2, 0, 2}, {3, 0, 2},
+       {1, 0, 3}, {2, 0, 3}, {3, 0, 3}, {3, 1, 1}, {2, 2, 1}, {1, 3, 1}, {3, 1, 2}, {2, 2, 2}, {1, 3, 2},
+       {3, 1, 3}, {2, 2, 3}, {1, 3, 3}, {0, 3, 1}, {0, 2, 1}, {0, 1, 1}, {0, 3, 2}, {0, 2, 2}, {0, 1, 2},
+       {0, 3, 3}, {0, 2, 3}, {0, 1, 3}, {1, 1, 1}, {2, 1, 1}, {1, 2, 1}, {1, 1, 2}, {2, 1, 2}, {1, 2, 2},
+       {1, 1, 3}, {2, 1, 3}, {1, 2, 3}}};
+  for (const int order : {3, 4}) {
+    SCOPED_TRACE(order);
+    const auto& expected = vtk_wedges[static_cast<std::size_t>(order - 3)];
+    const Eigen::MatrixXd vtk = vtk_lagrange_points(ElementType::Prism, order);
+    const Eigen::MatrixXd& gmsh = reference_element(ElementType::Prism, order).nodes;
+    const auto& perm = vtk_to_gmsh_permutation(ElementType::Prism, order);
+    ASSERT_EQ(static_cast<std::size_t>(vtk.cols()), expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      const Eigen::Vector3d v(expected[i][0], expected[i][1], expected[i][2]);
+      EXPECT_LT((vtk.col(static_cast<Eigen::Index>(i)) * order - v).norm(), 1e-12) << i;
+      const Eigen::Vector3d g = gmsh.col(perm[i]);
+      EXPECT_LT((Eigen::Vector3d(g(0), g(1), (g(2) + 1) / 2) * order - v).norm(), 1e-12) << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace meshmorph

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
       {ElementType::Quadrilateral, 1}, {ElementType::Quadrilateral, 2}, {ElementType::Quadrilateral, 3},
       {ElementType::Tetrahedron, 1}, {ElementType::Tetrahedron, 2}, {ElementType::Tetrahedron, 3}, {ElementType::Tetrahedron, 4},
       {ElementType::Hexahedron, 1}, {ElementType::Hexahedron, 2}, {ElementType::Hexahedron, 3},
-      {ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}};
+      {ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Prism, 3}, {ElementType::Prism, 4},
+      {ElementType::Pyramid, 1}};
   struct Variant {
     const char* suffix;
     MeshFormat format;

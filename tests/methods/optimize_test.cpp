@@ -97,6 +97,53 @@ TEST(Optimize, AHybridLayerMeshImprovesAndStaysValid) {
   EXPECT_EQ(count_invalid_cells(mesh), 0u);
 }
 
+// Quartic prisms below quartic tetrahedra: the unit square × [0, ½] in two prisms and × [½, 1]
+// in six Kuhn tetrahedra (their triangles meet the prisms' tops), raised to order 4. Neither
+// is the regular cell: the energy drops, every iterate valid (the elements' derivatives are
+// the registry's, tests/energy/element_energy_test.cpp).
+TEST(Optimize, AQuarticMeshOfPrismsAndTetrahedraImprovesAndStaysValid) {
+  const Mesh prisms = structured_mesh(ElementType::Prism, 1, 1), tets = structured_mesh(ElementType::Tetrahedron, 1, 1);
+  Mesh mesh;
+  mesh.dim = 3;
+  std::vector<Eigen::Vector3d> points;
+  const auto node = [&](Eigen::Vector3d p) {
+    for (std::size_t j = 0; j < points.size(); ++j)
+      if ((points[j] - p).norm() < 1e-12) return static_cast<std::int32_t>(j);
+    points.push_back(p);
+    return static_cast<std::int32_t>(points.size() - 1);
+  };
+  for (const auto& [part, z0] : {std::pair{&prisms, 0.0}, std::pair{&tets, 0.5}}) {
+    CellBlock b{part->cells[0].type, 1, {}, {}, {}};
+    for (std::size_t c = 0; c < part->cells[0].n_cells(); ++c) {
+      std::vector<std::int32_t> v;
+      for (int a = 0; a < part->cells[0].n_nodes_per_cell(); ++a) {
+        const Eigen::Vector3d p = part->x.col(part->cells[0].cell(c)[a]);
+        v.push_back(node({p(0), p(1), z0 + 0.5 * p(2)}));
+      }
+      b.push_back(v.data(), 1, 1);
+    }
+    mesh.cells.push_back(b);
+  }
+  mesh.x.resize(3, static_cast<Eigen::Index>(points.size()));
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    mesh.x.col(static_cast<Eigen::Index>(j)) = points[j];
+    mesh.node_tags.push_back(static_cast<std::int64_t>(j) + 1);
+  }
+  mesh = elevate_order(mesh, 4);
+  const Topology topo = build_topology(mesh);
+  ASSERT_EQ(boundary_nodes(mesh, topo).size(), mesh.n_nodes() - 3u * 3u * 7u);  // the 3 × 3 × 7 inner lattice
+  Eigen::MatrixXd x = mesh.x;
+  const OptimizeResult r = optimize_mesh(mesh, topo, fixed_boundary(mesh, topo), {}, {}, x);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_LT(r.energy, r.energy0);
+  for (std::size_t k = 1; k < r.history.size(); ++k) {
+    EXPECT_LE(r.history[k].energy, r.history[k - 1].energy);
+    EXPECT_GT(r.history[k].min_det, 0.0);
+  }
+  mesh.x = x;
+  EXPECT_EQ(count_invalid_cells(mesh), 0u);
+}
+
 // A quarter annulus 1 ≤ r ≤ 2 (the unit square mapped by polar coordinates, so every node of
 // "left" lies on the unit circle exactly); `grading` > 0 crowds the nodes towards the ends.
 Mesh quarter_annulus(ElementType type, int order, int n, double grading = 0.0) {

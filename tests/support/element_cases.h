@@ -24,10 +24,13 @@ inline std::vector<ElementCase> all_cell_cases() {
   return out;
 }
 
-/// Prisms and pyramids 1–2: a second instantiation of the sweeps that hold for any cell
+/// Prisms 1–4 and pyramids 1–2: a second instantiation of the sweeps that hold for any cell
 /// (those written for simplices and tensor cells only keep all_cell_cases).
 inline std::vector<ElementCase> prism_pyramid_cases() {
-  return {{ElementType::Prism, 1}, {ElementType::Prism, 2}, {ElementType::Pyramid, 1}, {ElementType::Pyramid, 2}};
+  std::vector<ElementCase> out;
+  for (auto t : {ElementType::Prism, ElementType::Pyramid})
+    for (int p = 1; p <= max_order_of(t); ++p) out.push_back({t, p});
+  return out;
 }
 
 inline std::string case_name(const ElementCase& c) { return std::string(name_of(c.type)) + "_p" + std::to_string(c.order); }

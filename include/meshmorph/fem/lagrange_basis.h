@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <array>
+#include <memory>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "meshmorph/fem/reference_element.h"
@@ -7,9 +11,10 @@
 namespace meshmorph {
 
 /// The nodal Lagrange basis of a reference element: N_a(ξ_b) = δ_ab at its nodes. Complete
-/// polynomials of degree p on simplices, tensor-product degree p on quads and hexes, the
-/// product of the triangle's degree-p and the segment's degree-p polynomials on prisms: built
-/// by inverting the Vandermonde matrix of a monomial basis at the nodes. The pyramid's space
+/// polynomials of degree p on simplices and tensor-product degree p on quads and hexes, built
+/// by inverting the Vandermonde matrix of a monomial basis at the nodes; on prisms the
+/// products L_i(ξ, η) ℓ_k(ζ) of the triangle's and the segment's nodal bases (every prism
+/// node is a triangle node at a segment node). The pyramid's space
 /// is not polynomial: the pyramidal space of Bergot, Cohen and Duruflé ("Higher-order finite
 /// elements for hybrid meshes using new nodal pyramidal elements", J. Sci. Comput. 42, 2010),
 /// which is Gmsh's, spanned by u^i v^j (1 − ζ)^max(i,j) ζ^k (u = ξ/(1 − ζ), v = η/(1 − ζ),
@@ -35,8 +40,10 @@ class LagrangeBasis {
 
  private:
   const ReferenceElement* ref_;
-  Eigen::MatrixXi exponents_;  // dim × n monomial exponents (empty on pyramids)
+  Eigen::MatrixXi exponents_;  // dim × n monomial exponents (empty on prisms and pyramids)
   Eigen::MatrixXd coeffs_;     // n × n: N_a = Σ_m coeffs_(m, a) · monomial_m (pyramids: pyramidal function m)
+  std::vector<std::array<int, 2>> factors_;  // prisms: node a = (triangle node, segment node)
+  std::shared_ptr<const LagrangeBasis> triangle_, segment_;  // prisms: the factors' bases
 };
 
 /// The shared basis of (type, order).

@@ -32,9 +32,12 @@ enum class QuadratureFamily {
 /// fully symmetric rules with positive weights and interior points for degrees 2–8 where
 /// one is tabulated (src/fem/detail/simplex_rules.inc), otherwise collapsed Gauss–Jacobi
 /// (Stroud conical) products; one point (the centroid) for degree ≤ 1. Prisms: the triangle's
-/// rule times Gauss–Legendre in ζ; pyramids: Gauss–Legendre × Gauss–Legendre × Gauss–Jacobi on
-/// the collapsed cube (Duffy), exact to `degree` in the collapsed coordinates. Both always
-/// Gauss.
+/// rule times Gauss–Legendre in ζ; for `Lobatto`, the collapsed triangle ξ = s(1 − t), η = t
+/// with Gauss–Lobatto points in s and Gauss–Lobatto–Jacobi points of weight 1 − t in t (the
+/// points at t = 1 joined at the corner) times Gauss–Lobatto in ζ, m = (degree + 4)/2 points
+/// each: exact to `degree`, the corners, edges and faces among the points, positive weights,
+/// not symmetric. Pyramids: Gauss–Legendre × Gauss–Legendre × Gauss–Jacobi on the collapsed
+/// cube (Duffy), exact to `degree` in the collapsed coordinates, always Gauss.
 const QuadratureRule& quadrature_rule(ElementType type, int degree, QuadratureFamily family = QuadratureFamily::Gauss);
 
 /// Degree used by default for mesh-quality integrals on an element of `order`: 1 for

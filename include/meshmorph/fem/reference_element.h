@@ -25,8 +25,8 @@ struct ReferenceElement {
 };
 
 /// The shared reference element of (type, order); throws std::invalid_argument outside
-/// orders 1–4 (simplices, lines) / 1–3 (tensor cells; order 4 is also available) / 1–2
-/// (prisms: the complete 18-node P2 prism; pyramids: Gmsh's 14-node P2 pyramid).
+/// orders 1–4 (simplices, lines, complete prisms: Gmsh's 6, 18, 40 and 75 nodes) / 1–3
+/// (tensor cells; order 4 is also available) / 1–2 (pyramids: Gmsh's 14-node P2 pyramid).
 const ReferenceElement& reference_element(ElementType type, int order);
 
 /// Weights of the corner (linear/multilinear) shape functions at reference point `xi`:

@@ -47,12 +47,12 @@ constexpr int n_nodes_of(ElementType t, int p) {
 /// Number of corner vertices of a family.
 constexpr int n_corners_of(ElementType t) { return n_nodes_of(t, 1); }
 
-/// Highest supported order: 4 for simplices, 3 for tensor cells, 2 for prisms and pyramids
+/// Highest supported order: 4 for simplices and prisms, 3 for tensor cells, 2 for pyramids
 /// (Point: 0).
 constexpr int max_order_of(ElementType t) {
   switch (t) {
     case ElementType::Point: return 0;
-    case ElementType::Prism:
+    case ElementType::Prism: return 4;
     case ElementType::Pyramid: return 2;
     default: return is_simplex(t) ? 4 : 3;
   }
