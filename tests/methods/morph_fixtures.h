@@ -4,8 +4,10 @@
 #include <string>
 
 #include "meshmorph/fem/jacobian.h"
+#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/mesh/mesh.h"
+#include "meshmorph/mesh/topology.h"
 #include "meshmorph/quality/element_quality.h"
 
 namespace meshmorph::test {
@@ -36,5 +38,13 @@ inline BoundaryTargets translated_group(const Mesh& mesh, const std::string& fix
   }
   return bc;
 }
+
+/// Paper 000 §5.2's shell (bench/geo/shell.geo at lc 0.8: 444 nodes, 42 across), its inner
+/// sphere translated by 8 along x, the outer one fixed.
+struct CoarseShell {
+  Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/shell_coarse.msh");
+  Topology topology = build_topology(mesh);
+  BoundaryTargets bc = translated_group(mesh, "outer", "inner", 8.0);
+};
 
 }  // namespace meshmorph::test

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/validity.h"
-#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/methods/morph.h"
 #include "methods/morph_fixtures.h"
 
@@ -16,9 +15,10 @@ namespace {
 // the result is the run on the input's numbering up to the rounding of sums taken in another
 // order, which the weights' history carries on (7e-5).
 TEST(MorphOrder, ReturnsTheRunOnTheInputNumberingInTheInputNumbering) {
-  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/shell_coarse.msh");
-  const Topology topo = build_topology(mesh);
-  const BoundaryTargets bc = test::translated_group(mesh, "outer", "inner", 8.0);
+  const test::CoarseShell shell;
+  const Mesh& mesh = shell.mesh;
+  const Topology& topo = shell.topology;
+  const BoundaryTargets& bc = shell.bc;
   const auto run = [](const Mesh& m, const Topology& t, const BoundaryTargets& b, bool renumber) {
     MorphOptions o;
     o.renumber = renumber;

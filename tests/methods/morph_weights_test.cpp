@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/validity.h"
-#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/methods/morph.h"
 #include "methods/morph_fixtures.h"
 
@@ -17,9 +16,10 @@ namespace {
 // steps where β at every update takes 23, and ends at a higher min quality (0.513 against
 // 0.508).
 TEST(MorphWeights, AdaptiveGrowthTakesFewerStepsToABetterShell) {
-  const Mesh mesh = read_mesh(std::string(MESHMORPH_TEST_DATA) + "/shell_coarse.msh");
-  const Topology topo = build_topology(mesh);
-  const BoundaryTargets bc = test::translated_group(mesh, "outer", "inner", 8.0);
+  const test::CoarseShell shell;
+  const Mesh& mesh = shell.mesh;
+  const Topology& topo = shell.topology;
+  const BoundaryTargets& bc = shell.bc;
   long long steps[2];
   double quality[2];
   for (const bool adaptive : {false, true}) {
