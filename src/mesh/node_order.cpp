@@ -9,38 +9,11 @@
 namespace meshmorph {
 namespace {
 
-// The cells around each node, as indices into a flat list of the cells of every block.
-struct Incidence {
-  std::vector<const std::int32_t*> cell;  // first node of each cell
-  std::vector<int> size;                  // nodes of each cell
-  std::vector<std::int64_t> start;        // per node + 1
-  std::vector<std::int32_t> cells;        // cell indices around each node
-};
-
-Incidence incidence(const Mesh& mesh) {
-  Incidence in;
-  for (const CellBlock& b : mesh.cells)
-    for (std::size_t c = 0; c < b.n_cells(); ++c) {
-      in.cell.push_back(b.cell(c));
-      in.size.push_back(b.n_nodes_per_cell());
-    }
-  const std::size_t n = mesh.n_nodes();
-  in.start.assign(n + 1, 0);
-  for (std::size_t c = 0; c < in.cell.size(); ++c)
-    for (int a = 0; a < in.size[c]; ++a) ++in.start[in.cell[c][a] + 1];
-  std::partial_sum(in.start.begin(), in.start.end(), in.start.begin());
-  in.cells.resize(static_cast<std::size_t>(in.start[n]));
-  std::vector<std::int64_t> next(in.start.begin(), in.start.end() - 1);
-  for (std::size_t c = 0; c < in.cell.size(); ++c)
-    for (int a = 0; a < in.size[c]; ++a) in.cells[next[in.cell[c][a]]++] = static_cast<std::int32_t>(c);
-  return in;
-}
-
 // Breadth-first search from `root` over the nodes not yet stamped with `stamp`, neighbours
 // taken in increasing degree (cells around them), then index: the Cuthill–McKee order.
 // Appends the nodes reached to `out`.
-void search(const Incidence& in, std::int32_t root, int stamp, std::vector<int>& stamps, std::vector<std::int32_t>& out) {
-  const auto degree = [&](std::int32_t v) { return in.start[v + 1] - in.start[v]; };
+void search(const Topology& t, std::int32_t root, int stamp, std::vector<int>& stamps, std::vector<std::int32_t>& out) {
+  const auto degree = [&](std::int32_t v) { return t.node_cell_offset[v + 1] - t.node_cell_offset[v]; };
   std::size_t head = out.size();
   out.push_back(root);
   stamps[root] = stamp;
@@ -48,14 +21,11 @@ void search(const Incidence& in, std::int32_t root, int stamp, std::vector<int>&
   while (head < out.size()) {
     const std::int32_t v = out[head++];
     around.clear();
-    for (std::int64_t k = in.start[v]; k < in.start[v + 1]; ++k) {
-      const std::int32_t c = in.cells[k];
-      for (int a = 0; a < in.size[c]; ++a) {
-        const std::int32_t u = in.cell[c][a];
-        if (stamps[u] != stamp) {
-          stamps[u] = stamp;
-          around.push_back(u);
-        }
+    for (std::int64_t k = t.node_node_offset[v]; k < t.node_node_offset[v + 1]; ++k) {
+      const std::int32_t u = t.node_nodes[k];
+      if (stamps[u] != stamp) {
+        stamps[u] = stamp;
+        around.push_back(u);
       }
     }
     std::sort(around.begin(), around.end(),
@@ -66,9 +36,9 @@ void search(const Incidence& in, std::int32_t root, int stamp, std::vector<int>&
 
 }  // namespace
 
-std::vector<std::int32_t> locality_order(const Mesh& mesh) {
-  const Incidence in = incidence(mesh);
-  const std::size_t n = mesh.n_nodes();
+std::vector<std::int32_t> locality_order(const Topology& topology) {
+  MESHMORPH_CHECK(!topology.node_node_offset.empty(), "locality_order: the topology has no node neighbours");
+  const std::size_t n = topology.node_node_offset.size() - 1;
   std::vector<int> stamps(n, 0);
   std::vector<std::int32_t> order, probe;
   order.reserve(n);
@@ -78,9 +48,9 @@ std::vector<std::int32_t> locality_order(const Mesh& mesh) {
     // A first search finds a node far from v (the last it reaches); the order starts there.
     // Its stamps are negative so that the nodes stay unplaced.
     probe.clear();
-    search(in, static_cast<std::int32_t>(v), --stamp, stamps, probe);
+    search(topology, static_cast<std::int32_t>(v), --stamp, stamps, probe);
     const std::size_t placed = order.size();
-    search(in, probe.back(), 1, stamps, order);
+    search(topology, probe.back(), 1, stamps, order);
     // The nodes that the first search stamped are exactly the ones the second reaches.
     MESHMORPH_CHECK(order.size() - placed == probe.size(), "locality_order: inconsistent searches");
   }

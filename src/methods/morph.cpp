@@ -275,8 +275,8 @@ class MorphImpl final : public Morpher::Impl {
 // The run's nodes in locality_order(): the Newton systems of a mesh numbered as its
 // generator left it spend much of their time waiting for scattered vector entries.
 struct Morpher::Renumbered {
-  Renumbered(const Mesh& input, const BoundaryTargets& input_bc)
-      : order(locality_order(input)), mesh(renumber_nodes(input, order)), topology(build_topology(mesh)) {
+  Renumbered(const Mesh& input, const Topology& input_topology, const BoundaryTargets& input_bc)
+      : order(locality_order(input_topology)), mesh(renumber_nodes(input, order)), topology(build_topology(mesh)) {
     bc.role.resize(order.size());
     bc.target = in_order(input_bc.target);
     bc.normal = in_order(input_bc.normal);
@@ -303,7 +303,7 @@ Morpher::Morpher(const Mesh& input, const Topology& topology, const BoundaryTarg
   const Topology* topo = &topology;
   const BoundaryTargets* targets = &bc;
   if (options.renumber) {
-    renumbered_ = std::make_unique<Renumbered>(input, bc);
+    renumbered_ = std::make_unique<Renumbered>(input, topology, bc);
     mesh = &renumbered_->mesh;
     topo = &renumbered_->topology;
     targets = &renumbered_->bc;

@@ -72,7 +72,7 @@ TEST(NodeOrder, BringsTheNodesOfAShuffledGridBackToAGridsBandwidth) {
   const int n = 30;
   const Mesh mesh = grid(n, shuffled(static_cast<std::size_t>((n + 1) * (n + 1)), 7));
   ASSERT_GT(bandwidth(mesh), 10 * (n + 2));  // a generator's numbering: neighbours far apart
-  const std::vector<std::int32_t> order = locality_order(mesh);
+  const std::vector<std::int32_t> order = locality_order(build_topology(mesh));
   std::vector<std::int32_t> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   std::vector<std::int32_t> all(mesh.n_nodes());
@@ -81,13 +81,13 @@ TEST(NodeOrder, BringsTheNodesOfAShuffledGridBackToAGridsBandwidth) {
   // Row by row the grid has bandwidth n + 2; Cuthill–McKee's diagonal fronts stay within
   // twice that.
   EXPECT_LE(bandwidth(renumber_nodes(mesh, order)), 2 * (n + 2));
-  EXPECT_EQ(locality_order(mesh), order);  // deterministic
+  EXPECT_EQ(locality_order(build_topology(mesh)), order);  // deterministic
 }
 
 TEST(NodeOrder, RenumberingMovesCoordinatesTagsFieldsAndCellsTogether) {
   const int n = 6;
   const Mesh mesh = grid(n, shuffled(static_cast<std::size_t>((n + 1) * (n + 1)), 3));
-  const std::vector<std::int32_t> order = locality_order(mesh);
+  const std::vector<std::int32_t> order = locality_order(build_topology(mesh));
   const Mesh r = renumber_nodes(mesh, order);
   ASSERT_EQ(r.n_nodes(), mesh.n_nodes());
   for (std::size_t k = 0; k < r.n_nodes(); ++k) {
@@ -135,7 +135,7 @@ TEST(NodeOrder, PlacesEveryPartOfADisconnectedMeshAndNodesOfNoCell) {
   m.cells[0].nodes.insert(m.cells[0].nodes.end(), b.cells[0].nodes.begin(), b.cells[0].nodes.end());
   m.cells[0].physical.insert(m.cells[0].physical.end(), b.cells[0].physical.begin(), b.cells[0].physical.end());
   m.cells[0].entity.insert(m.cells[0].entity.end(), b.cells[0].entity.begin(), b.cells[0].entity.end());
-  const std::vector<std::int32_t> order = locality_order(m);
+  const std::vector<std::int32_t> order = locality_order(build_topology(m));
   std::vector<std::int32_t> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   std::vector<std::int32_t> all(m.n_nodes());
