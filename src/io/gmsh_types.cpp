@@ -3,6 +3,7 @@
 
 #include <array>
 
+#include "io/detail/promote.h"
 #include "meshmorph/error.h"
 
 namespace meshmorph::detail {
@@ -26,19 +27,24 @@ constexpr std::array<Entry, 27> k_types{{
     {7, ElementType::Pyramid, 1}, {14, ElementType::Pyramid, 2},
 }};
 
+// The incomplete (serendipity) types read as the complete quadratic cells.
+constexpr std::array<Entry, 4> k_incomplete{{
+    {16, ElementType::Quadrilateral, 2}, {17, ElementType::Hexahedron, 2}, {18, ElementType::Prism, 2}, {19, ElementType::Pyramid, 2},
+}};
+
 }  // namespace
 
 std::optional<FamilyOrder> from_gmsh_type(int code) {
   for (const Entry& e : k_types)
     if (e.code == code) return FamilyOrder{e.type, e.order};
+  for (const Entry& e : k_incomplete)
+    if (e.code == code) return FamilyOrder{e.type, e.order, incomplete_nodes_of(e.type)};
   return std::nullopt;
 }
 
 std::string describe_unsupported_gmsh_type(int code) {
   const char* what = nullptr;
   switch (code) {
-    case 16: what = "serendipity/incomplete element type 16 (QUA_8)"; break;
-    case 17: what = "serendipity/incomplete element type 17 (HEX_20)"; break;
     case 20: what = "serendipity/incomplete element type 20 (TRI_9)"; break;
     case 22: what = "serendipity/incomplete element type 22 (TRI_12)"; break;
     case 24: what = "serendipity/incomplete element type 24 (TRI_15I)"; break;
@@ -47,8 +53,6 @@ std::string describe_unsupported_gmsh_type(int code) {
     case 39: what = "serendipity/incomplete element type 39 (QUA_12)"; break;
     case 40: what = "serendipity/incomplete element type 40 (QUA_16I)"; break;
     case 99: what = "serendipity/incomplete element type 99 (HEX_32)"; break;
-    case 18: what = "serendipity/incomplete element type 18 (PRI_15)"; break;
-    case 19: what = "serendipity/incomplete element type 19 (PYR_13)"; break;
     default: break;
   }
   if (what) return std::string(what) + " is not supported (complete Lagrange elements only)";

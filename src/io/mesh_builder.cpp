@@ -6,7 +6,9 @@
 #include <string>
 #include <utility>
 
+#include "io/detail/promote.h"
 #include "meshmorph/error.h"
+#include "meshmorph/log.h"
 
 namespace meshmorph::detail {
 
@@ -92,7 +94,9 @@ void drop_repeated_cells(CellBlock& b) {
 
 }  // namespace
 
-Mesh MeshBuilder::finish(const std::string& where) {
+Mesh MeshBuilder::finish(const std::string& where, const std::filesystem::path& file) {
+  if (const std::string note = promote_incomplete(blocks_, xyz, tags, node_fields); !note.empty())
+    log_info(file.string() + ": " + note);
   Mesh mesh;
   int top = 0;
   // A block declared with no element holds no cell: a mesh of only such blocks has none.

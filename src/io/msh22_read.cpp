@@ -49,13 +49,14 @@ void read_msh22_elements(MshState& s) {
   s.check_count(n, s.binary ? 12 : 8, c.token_start());
   std::vector<std::int64_t> tags;
   CellBlock* block = nullptr;
+  FamilyOrder fo{};
   int block_code = 0;  // the type of *block, once set (no sentinel: a file may hold any int)
   auto use_type = [&](int code, std::size_t at) {
     if (block != nullptr && code == block_code) return;
-    const FamilyOrder fo = s.element_type(code, at);
+    fo = s.element_type(code, at);
     block = &s.builder.block(fo.type, fo.order);
     block_code = code;
-    tags.resize(static_cast<std::size_t>(n_nodes_of(fo.type, fo.order)));
+    tags.resize(static_cast<std::size_t>(n_listed(fo)));
   };
   if (!s.binary) {
     for (std::uint64_t e = 0; e < n; ++e) {
@@ -73,7 +74,7 @@ void read_msh22_elements(MshState& s) {
         if (k == 1) entity = t;
       }
       for (auto& t : tags) t = c.integer<std::int64_t>("node tag");
-      s.add_element(*block, tags.data(), physical, entity, at);
+      s.add_element(*block, fo, tags.data(), physical, entity, at);
     }
     return;
   }
@@ -95,7 +96,7 @@ void read_msh22_elements(MshState& s) {
       const std::size_t at = c.pos();
       for (auto& v : record) v = c.raw<std::int32_t>("element data");
       for (std::size_t k = 0; k < tags.size(); ++k) tags[k] = record[1 + static_cast<std::size_t>(n_tags) + k];
-      s.add_element(*block, tags.data(), n_tags > 0 ? record[1] : 0, n_tags > 1 ? record[2] : 0, at);
+      s.add_element(*block, fo, tags.data(), n_tags > 0 ? record[1] : 0, n_tags > 1 ? record[2] : 0, at);
     }
     seen += static_cast<std::uint64_t>(count);
   }

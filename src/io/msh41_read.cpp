@@ -162,7 +162,7 @@ void read_msh41_elements(MshState& s) {
     if (topological_dim(fo.type) != dim)
       c.fail_at(dim_at, "entity dimension " + std::to_string(dim) + " does not match element type " + std::to_string(code));
     const std::uint64_t n = count(s, "number of elements in block");
-    const int k = n_nodes_of(fo.type, fo.order);
+    const int k = n_listed(fo);
     s.check_count(n, s.binary ? 8 * static_cast<std::size_t>(k + 1) : 2 * static_cast<std::size_t>(k + 1), here(s));
     seen += n;
     if (seen > n_elements)
@@ -172,7 +172,7 @@ void read_msh41_elements(MshState& s) {
     const std::vector<std::int32_t> none;
     const std::vector<std::int32_t>& physical = it == s.entity_physical.end() ? none : it->second;
     CellBlock& block = s.builder.block(fo.type, fo.order);
-    block.nodes.reserve(block.nodes.size() + n * static_cast<std::size_t>(k));
+    block.nodes.reserve(block.nodes.size() + n * static_cast<std::size_t>(n_nodes_of(fo.type, fo.order)));
     tags.resize(static_cast<std::size_t>(k));
     for (std::uint64_t e = 0; e < n; ++e) {
       const std::size_t at = s.binary ? c.pos() : (c.skip_space(), c.pos());
@@ -180,7 +180,7 @@ void read_msh41_elements(MshState& s) {
       for (auto& t : tags)
         t = s.binary ? static_cast<std::int64_t>(c.raw<std::uint64_t>("node tag")) : c.integer<std::int64_t>("node tag");
       if (interface) continue;
-      s.add_element(block, tags.data(), physical.empty() ? 0 : physical.front(), entity, at);
+      s.add_element(block, fo, tags.data(), physical.empty() ? 0 : physical.front(), entity, at);
       for (std::size_t p = 1; p < physical.size(); ++p)
         s.builder.extra_physical.push_back({fo.type, fo.order, block.n_cells() - 1, physical[p]});
     }

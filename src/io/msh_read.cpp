@@ -23,9 +23,9 @@ void MshState::index_nodes(std::size_t section_start) {
   have_nodes = true;
 }
 
-void MshState::add_element(CellBlock& block, const std::int64_t* node_tags, std::int32_t physical,
+void MshState::add_element(CellBlock& block, const FamilyOrder& fo, const std::int64_t* node_tags, std::int32_t physical,
                            std::int32_t entity, std::size_t at) {
-  const int n = n_nodes_of(block.type, block.order);
+  const int n = n_listed(fo);
   for (int k = 0; k < n; ++k) {
     const std::int32_t i = index.find(node_tags[k]);
     if (i < 0) cur.fail_at(at, "element references undefined node tag " + std::to_string(node_tags[k]));
@@ -33,6 +33,7 @@ void MshState::add_element(CellBlock& block, const std::int64_t* node_tags, std:
   }
   if (const int k = repeated_node(block.nodes.data() + block.nodes.size() - n, n); k >= 0)
     cur.fail_at(at, "element lists node tag " + std::to_string(node_tags[k]) + " twice (a degenerate element)");
+  block.nodes.resize(block.nodes.size() + static_cast<std::size_t>(n_nodes_of(fo.type, fo.order) - n), -1);
   block.physical.push_back(physical);
   block.entity.push_back(entity);
 }
@@ -152,7 +153,7 @@ Mesh parse_msh(std::string_view data, const std::filesystem::path& path) {
     c.binary = false;
   }
   detail::finish_node_data(s);
-  return s.builder.finish(c.where(data.size()));
+  return s.builder.finish(c.where(data.size()), path);
 }
 
 }  // namespace meshmorph

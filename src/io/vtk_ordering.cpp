@@ -239,7 +239,17 @@ const std::vector<int>& vtk_to_gmsh_permutation(ElementType type, int order) {
 
 const std::vector<int>& vtk_cell_permutation(int vtk_type, ElementType type, int order) {
   static const std::vector<int> k_wedge{0, 2, 1, 3, 5, 4};
-  return vtk_type == 13 ? k_wedge : vtk_to_gmsh_permutation(type, order);
+  // VTK_QUADRATIC_WEDGE: VTK_WEDGE's corners, then its edges (0 1) (1 2) (2 0) (3 4) (4 5)
+  // (5 3) (0 3) (1 4) (2 5), each on Gmsh's edge between the corners it took.
+  static const std::vector<int> k_quadratic_wedge{0, 2, 1, 3, 5, 4, 7, 9, 6, 13, 14, 12, 8, 11, 10};
+  // VTK_QUADRATIC_PYRAMID: the corners, then the base's edges and the edges to the apex.
+  static const std::vector<int> k_quadratic_pyramid{0, 1, 2, 3, 4, 5, 8, 10, 6, 7, 9, 11, 12};
+  switch (vtk_type) {
+    case 13: return k_wedge;
+    case 26: return k_quadratic_wedge;
+    case 27: return k_quadratic_pyramid;
+    default: return vtk_to_gmsh_permutation(type, order);
+  }
 }
 
 }  // namespace meshmorph

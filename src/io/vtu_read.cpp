@@ -51,7 +51,8 @@ std::vector<std::int64_t> read_tags(const VtuFile& f, const pugi::xml_node& node
 
 struct VtkCell {
   ElementType type;
-  int order;  // 0: derive from the point count
+  int order;         // 0: derive from the point count
+  int n_listed = 0;  // an incomplete (serendipity) cell's point count, read as the complete cell
 };
 
 std::optional<VtkCell> vtk_cell(int code) {
@@ -76,6 +77,10 @@ std::optional<VtkCell> vtk_cell(int code) {
     case 73: return VtkCell{ElementType::Prism, 0};
     case 14: return VtkCell{ElementType::Pyramid, 1};
     case 74: return VtkCell{ElementType::Pyramid, 0};
+    case 23: return VtkCell{ElementType::Quadrilateral, 2, 8};
+    case 25: return VtkCell{ElementType::Hexahedron, 2, 20};
+    case 26: return VtkCell{ElementType::Prism, 2, 15};
+    case 27: return VtkCell{ElementType::Pyramid, 2, 13};
     default: return std::nullopt;
   }
 }
@@ -173,7 +178,10 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
         if (n_nodes_of(vc->type, p) == n) order = p;
     // VTK 9.1 has no Lagrange pyramid of order 2 (VTK_LAGRANGE_PYRAMID has no cell class there).
     const int highest = vc->type == ElementType::Pyramid ? 1 : vc->type == ElementType::Prism ? max_order_of(vc->type) : 4;
-    if (order == 0 || order > highest || n_nodes_of(vc->type, order) != n)
+    if (vc->n_listed > 0 && n != vc->n_listed)
+      f.fail(off_node, "cell " + std::to_string(i) + " of VTK type " + std::to_string(types[i]) + " has " +
+                           std::to_string(n) + " points, not " + std::to_string(vc->n_listed));
+    if (vc->n_listed == 0 && (order == 0 || order > highest || n_nodes_of(vc->type, order) != n))
       f.fail(off_node, "cell " + std::to_string(i) + " of VTK type " + std::to_string(types[i]) + " has " +
                            std::to_string(n) + " points, which is no complete Lagrange cell of order 1-" + std::to_string(highest));
     if (vc->type != last_type || order != last_order || types[i] != last_code) {  // the permutation cache takes a lock
@@ -183,7 +191,7 @@ void read_piece(const VtuFile& f, const pugi::xml_node& piece, bool first_piece,
       last_type = vc->type;
       last_order = order;
     }
-    gmsh.resize(static_cast<std::size_t>(n));
+    gmsh.assign(static_cast<std::size_t>(n_nodes_of(vc->type, order)), -1);  // promoted cells: −1 for the nodes they lack
     // VTK 8's Lagrange hexahedra hold edge 11's nodes where VTK 9 has edge 10's, and back.
     const int e = order - 1, swap_from = 8 + 10 * e;
     const bool v8 = f.hexahedra_v8 && types[i] == k_vtk_lagrange_hexahedron && e > 0;
@@ -282,7 +290,7 @@ Mesh parse_vtu(std::string_view data, const std::filesystem::path& path) {
     read_piece(f, piece, first_piece, builder);
     first_piece = false;
   }
-  return builder.finish(detail::location(path, data, data.size(), false));
+  return builder.finish(detail::location(path, data, data.size(), false), path);
 }
 
 }  // namespace meshmorph

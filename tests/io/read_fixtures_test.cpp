@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
-// Files written by other tools: Gmsh 4.8.4 (tests/data/io/*.geo, see docs/formats.md) and
-// meshio 5.0.0 (from gmsh_tri6_41a.msh / gmsh_tet4_22a.msh).
+// Files written by other tools: Gmsh 4.8.4 (tests/data/io/*.geo, see docs/formats.md),
+// meshio 5.0.0 (from gmsh_tri6_41a.msh / gmsh_tet4_22a.msh) and VTK 9.1
+// (tests/data/io/serendipity_meshes.py).
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "io/mesh_compare.h"
+#include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
@@ -136,6 +139,54 @@ TEST(ReadFixtures, MeshioMedit) {
   ASSERT_EQ(m.cells.size(), 1u);
   EXPECT_EQ(m.cells[0].nodes, gmsh.cells[0].nodes);
   EXPECT_EQ(m.cells[0].physical, gmsh.cells[0].physical);
+}
+
+// Each cell as its type, order, physical tag and node coordinates (rounded to 1e-12), sorted.
+std::vector<std::vector<double>> cells_by_coordinates(const Mesh& m) {
+  std::vector<std::vector<double>> cells;
+  for (const auto* list : {&m.cells, &m.facets})
+    for (const CellBlock& b : *list)
+      for (std::size_t c = 0; c < b.n_cells(); ++c) {
+        std::vector<double> v{static_cast<double>(b.type), static_cast<double>(b.order), static_cast<double>(b.physical[c])};
+        for (int k = 0; k < b.n_nodes_per_cell(); ++k)
+          for (Eigen::Index d = 0; d < m.x.rows(); ++d) v.push_back(std::round(m.x(d, b.cell(c)[k]) * 1e12) / 1e12);
+        cells.push_back(std::move(v));
+      }
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+// Gmsh's incomplete quadratic cells (serendipity_hybrid.geo, Mesh.SecondOrderIncomplete):
+// 15-node prisms, 20-node hexahedra, a 13-node pyramid, 8-node quadrilateral facets, read as
+// the complete cells with a node at each quadrilateral face's centre (one per face) and at
+// each hexahedron's; the same mesh in the four MSH encodings and from VTK's writer.
+TEST(ReadFixtures, GmshIncompleteQuadraticCellsReadAsCompleteOnes) {
+  const Mesh m = read_mesh(data("gmsh_serendipity_41a.msh"));
+  EXPECT_EQ(m.dim, 3);
+  EXPECT_EQ(count(m.cells, ElementType::Prism, 2), 10u);
+  EXPECT_EQ(count(m.cells, ElementType::Hexahedron, 2), 2u);
+  EXPECT_EQ(count(m.cells, ElementType::Pyramid, 2), 1u);
+  EXPECT_EQ(count(m.cells, ElementType::Tetrahedron, 2), 53u);
+  EXPECT_EQ(count(m.facets, ElementType::Quadrilateral, 2), 5u);
+  EXPECT_EQ(count(m.facets, ElementType::Triangle, 2), 5u);
+  EXPECT_EQ(m.n_cells(), 66u);
+  // 185 nodes in the file; 29 quadrilateral faces of the prisms, hexahedra and the pyramid
+  // (each counted once) and 2 hexahedron centres added.
+  EXPECT_EQ(m.n_nodes(), 185u + 29u + 2u);
+  EXPECT_EQ(m.node_tags.back(), 216);
+  EXPECT_EQ(count_invalid_cells(m), 0u);
+  EXPECT_EQ(test::sorted_groups(m), (std::vector<std::tuple<int, int, std::string>>{
+                                        {2, 1, "bottom"}, {2, 2, "arc"}, {3, 3, "domain"}}));
+  test::expect_meshes_equal(m, read_mesh(data("gmsh_serendipity_41b.msh")), {.tolerance = 1e-15});
+  // MSH 2.2 lists the elements by type, tetrahedra first, and VTK's file its points by tag:
+  // the same cells, whose nodes come in another order.
+  for (const char* other : {"gmsh_serendipity_22a.msh", "gmsh_serendipity_22b.msh", "vtk_serendipity.vtu"}) {
+    SCOPED_TRACE(other);
+    const Mesh b = read_mesh(data(other));
+    EXPECT_EQ(b.n_nodes(), m.n_nodes());
+    EXPECT_EQ(cells_by_coordinates(b), cells_by_coordinates(m));
+    EXPECT_EQ(test::sorted_groups(b), test::sorted_groups(m));
+  }
 }
 
 }  // namespace

@@ -33,7 +33,11 @@ const std::vector<int>& vtk_to_gmsh_permutation(ElementType type, int order);
 /// The permutation of a cell of VTK type `vtk_type`: vtk_to_gmsh_permutation, except for the
 /// classic VTK_WEDGE (13), whose base triangle (0, 1, 2) faces away from (3, 4, 5) where
 /// Gmsh's and VTK's Lagrange wedge's face it (meshio#185; VTK 9.1's vtkCellSizeFilter gives a
-/// Gmsh-ordered VTK_WEDGE a negative volume): (0 2 1 3 5 4).
+/// Gmsh-ordered VTK_WEDGE a negative volume): (0 2 1 3 5 4); VTK_QUADRATIC_WEDGE (26), whose
+/// corners are VTK_WEDGE's, the same with its 9 edge nodes; VTK_QUADRATIC_PYRAMID (27): 13
+/// nodes onto the first 13 of Gmsh's 14-node pyramid. VTK_QUADRATIC_QUAD (23) and
+/// VTK_QUADRATIC_HEXAHEDRON (25) take the first 8 and 20 entries of the complete quadratic
+/// cell's permutation, which map them onto Gmsh's first 8 and 20 nodes.
 const std::vector<int>& vtk_cell_permutation(int vtk_type, ElementType type, int order);
 
 }  // namespace meshmorph

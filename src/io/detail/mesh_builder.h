@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -66,7 +67,9 @@ class MeshBuilder {
   CellBlock& block(ElementType type, int order);
 
   /// Builds the mesh. `where` is an error prefix ("file: line N") for whole-file problems.
-  Mesh finish(const std::string& where);
+  /// Cells read as incomplete ones (−1 for the nodes they lack) are completed first
+  /// (promote_incomplete), and a note saying how many is logged once, naming `file`.
+  Mesh finish(const std::string& where, const std::filesystem::path& file = {});
 
  private:
   std::vector<CellBlock> blocks_;

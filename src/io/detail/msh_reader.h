@@ -49,8 +49,9 @@ struct MshState {
   }
   /// Builds the tag index after $Nodes; fails on a duplicate tag.
   void index_nodes(std::size_t section_start);
-  /// Resolves the node tags of one element and appends it to `block`.
-  void add_element(CellBlock& block, const std::int64_t* node_tags, std::int32_t physical,
+  /// Resolves the node tags of one element of type `fo` and appends it to `block`; an
+  /// incomplete element's missing nodes are −1 until MeshBuilder::finish.
+  void add_element(CellBlock& block, const FamilyOrder& fo, const std::int64_t* node_tags, std::int32_t physical,
                    std::int32_t entity, std::size_t at);
   /// Family/order of a type number, or a failure naming it.
   FamilyOrder element_type(int code, std::size_t at) const;
