@@ -26,18 +26,36 @@ double newton_direction(LinearSolver& solver, Eigen::SparseMatrix<double>& H, co
   const double mean = diagonal.size() > 0 && diagonal.cwiseAbs().mean() > 0.0 ? diagonal.cwiseAbs().mean() : 1.0;
   const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-3 * mean);
   double tau = tau0;
+  // Whether the solver holds a set-up made for this matrix less shifted, on which CG found
+  // negative curvature: a larger shift is then tried with that set-up first (CG alone), and
+  // a new one is made only if CG neither finds a direction nor negative curvature with it.
+  bool probe = false;
+  const auto next_shift = [&tau](int k) { tau = tau == 0.0 ? 1e-4 : (k == 0 ? 4.0 : 16.0) * tau; };
   for (int k = 0; k < attempts && tau <= tau_max; ++k) {
     if (tau > 0.0)
       for (Eigen::Index i = 0; i < H.rows(); ++i)
         H.coeffRef(i, i) = diagonal[i] + tau * scale[i];
+    if (probe) {
+      p.setZero(g.size());
+      const LinearSolveStats s = solver.solve_previous(H, -g, p, rtol);
+      ++stats.linear_solves;
+      stats.krylov_iterations += s.iterations;
+      if (s.ok && g.dot(p) < 0.0) return tau;
+      if (s.indefinite) {
+        next_shift(k);
+        continue;
+      }
+    }
+    probe = false;
     if (solver.factorize(H)) {
       p.setZero(g.size());
       const LinearSolveStats s = solver.solve(-g, p, rtol);
       ++stats.linear_solves;
       stats.krylov_iterations += s.iterations;
       if (s.ok && g.dot(p) < 0.0) return tau;
+      probe = s.indefinite;
     }
-    tau = tau == 0.0 ? 1e-4 : (k == 0 ? 4.0 : 16.0) * tau;
+    next_shift(k);
   }
   return -1.0;
 }

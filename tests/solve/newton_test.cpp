@@ -282,6 +282,70 @@ TEST(Newton, FallsBackToTheProjectedHessianWhereTheExactOneIsIndefinite) {
   EXPECT_LT(q.exact_evaluations, q.evaluations);
 }
 
+// As CG-AMG: a set-up takes any matrix, and only the solve finds out, by negative curvature,
+// that it is not positive definite. With `reuse`, solve_previous() solves a new matrix with
+// the old set-up, as the real backend does.
+class SetUpThenSolve final : public LinearSolver {
+ public:
+  explicit SetUpThenSolve(bool reuse) : reuse_(reuse) {}
+  bool factorize(const Eigen::SparseMatrix<double>& A) override {
+    A_ = A;
+    ++setups;
+    return true;
+  }
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/) override {
+    return solve_with(A_, b, x);
+  }
+  LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  double /*rtol*/) override {
+    if (!reuse_ || A_.rows() != A.rows()) return {};
+    return solve_with(A, b, x);
+  }
+  std::string name() const override { return "set-up-then-solve"; }
+  int setups = 0;
+
+ private:
+  static LinearSolveStats solve_with(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+                                     Eigen::VectorXd& x) {
+    LinearSolveStats s;
+    s.iterations = 1;
+    const Eigen::LLT<Eigen::MatrixXd> llt{Eigen::MatrixXd(A)};
+    if (llt.info() != Eigen::Success) {
+      s.indefinite = true;
+      return s;
+    }
+    x = llt.solve(b);
+    s.ok = true;
+    return s;
+  }
+  bool reuse_;
+  Eigen::SparseMatrix<double> A_;
+};
+
+TEST(Newton, TriesLargerShiftsWithTheSetUpOfTheIndefiniteMatrix) {
+  // x_1 near 0 keeps the exact Hessian indefinite after the first full projected step, so
+  // that shifts are tried; once CG has found negative curvature with a set-up, the next
+  // shift is tried with the same set-up, and a new one is made only for a matrix that CG
+  // solves.
+  Eigen::VectorXd x0(2), c(2);
+  x0 << 1.5, 0.02;
+  c << 1.0, 0.0;
+  const auto run = [&](bool reuse, int& setups) {
+    Quartic q(x0, 0.5, c, -10.0);
+    SetUpThenSolve solver(reuse);
+    NewtonOptions o;
+    o.decrement_tolerance = 1e-24;
+    const NewtonStats s = newton(q, solver, o);
+    EXPECT_TRUE(s.converged) << s.message;
+    setups = solver.setups;
+    return q.x;
+  };
+  int with = 0, without = 0;
+  const Eigen::VectorXd a = run(true, with), b = run(false, without);
+  EXPECT_LT(with, without);
+  EXPECT_LT((a - b).norm(), 1e-12);
+}
+
 TEST(Newton, NeverAcceptsAPointBeyondTheBarrier) {
   // The unconstrained minimum in x_0 is near 1.2, but the barrier x_0 > 0.9 … is not active
   // there; start just above a barrier that the full step would cross.
