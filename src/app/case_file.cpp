@@ -162,6 +162,7 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
     c.steps = static_cast<int>(steps);
   }
   if (const json* j = r.optional("output_each_step")) c.output_each_step = detail::read_bool(*j, r.at("output_each_step"));
+  if (const json* j = r.optional("dt")) c.dt = detail::read_positive(*j, r.at("dt"));
   if (const json* j = r.optional("reorient")) c.reorient = detail::read_bool(*j, r.at("reorient"));
   if (const json* j = r.optional("options")) {
     if (!j->is_object()) r.at("options").fail("expected an object, found " + detail::json_type_phrase(*j));

@@ -238,7 +238,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
 }
 
 FitRunner::FitRunner(const CaseFile& c, Mesh mesh, int threads) {
-  reject_unused_keys(c, "fit", {"steps", "output_each_step"});
+  reject_unused_keys(c, "fit", {"steps", "output_each_step", "dt"});
   check_case_against_mesh(c, mesh);
   settings_ = read_fit_settings(c, threads);
   orient_cells(c, mesh);

@@ -79,7 +79,7 @@ OptimizeSettings read_optimize_settings(const CaseFile& c, const OptimizeFlags& 
 
 OptimizeRunner::OptimizeRunner(const CaseFile& c, Mesh mesh, int threads, const OptimizeFlags& flags)
     : where_(c.file.string()), input_(std::move(mesh)) {
-  reject_unused_keys(c, "optimize", {"interface", "trim", "steps", "output_each_step"});
+  reject_unused_keys(c, "optimize", {"interface", "trim", "steps", "output_each_step", "dt"});
   check_case_against_mesh(c, input_);
   threads_ = optimize_threads(threads, static_cast<std::size_t>(input_.dim) * input_.n_nodes());
   const ScopedThreads scoped(threads_);

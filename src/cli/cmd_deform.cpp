@@ -9,6 +9,7 @@
 
 #include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
+#include "cli/detail/series_output.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/deform_case.h"
 #include "meshmorph/cli/commands.h"
@@ -23,11 +24,11 @@ Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   const DeformRunner runner(c, read_mesh(c.mesh), threads);
   const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
-  int step_files = 0;
+  SeriesOutput series(runner.input(), &c, files);
   DeformOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
+    series.step(step, mesh);
   });
-  write_run(run, files, timings);
+  series.finish(run, timings);
 
   const nlohmann::ordered_json& extra = run.extra;
   const IterationCounts& counts = *run.report.iterations;
@@ -45,7 +46,7 @@ Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  min %.4f, mean %.4f, min shape %.4f; inverted %zu\n", run.quality.min_quality,
                 run.quality.mean_quality, run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return print_result(out, run.report, files.output, step_files);
+  return print_result(out, run.report, files.output, series.step_files());
 }
 
 }  // namespace detail

@@ -9,6 +9,7 @@
 
 #include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
+#include "cli/detail/series_output.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/morph_case.h"
 #include "meshmorph/cli/commands.h"
@@ -23,11 +24,11 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   MorphRunner runner(c, read_mesh(c.mesh), threads);
   const RunFiles files = run_files(a.output, a.report, &c, a.input);
 
-  int step_files = 0;
+  SeriesOutput series(runner.input(), &c, files);
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c.output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
+    series.step(step, mesh);
   });
-  write_run(run, files, timings);
+  series.finish(run, timings);
 
   const Report& report = run.report;
   const std::size_t guarded = run.extra.value("guarded_cells", std::size_t{0});
@@ -43,7 +44,7 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   out << line;
   std::snprintf(line, sizeof line, "boundary max error %.3g, rms %.3g\n", *report.boundary_error_max, *report.boundary_error_l2);
   out << line;
-  return print_result(out, report, files.output, step_files);
+  return print_result(out, report, files.output, series.step_files());
 }
 
 }  // namespace detail

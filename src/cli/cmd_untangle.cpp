@@ -9,6 +9,7 @@
 
 #include "cli/detail/method_command.h"
 #include "cli/detail/output_files.h"
+#include "cli/detail/series_output.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/untangle_case.h"
 #include "meshmorph/cli/commands.h"
@@ -24,11 +25,11 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
   const RunFiles files = run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_untangled");
 
-  int step_files = 0;
+  SeriesOutput series(runner.input(), c ? &*c : nullptr, files);
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {
-    if (c && c->output_each_step && files.output) write_step_mesh(*files.output, step, mesh, step_files);
+    series.step(step, mesh);
   });
-  write_run(run, files, timings);
+  series.finish(run, timings);
 
   const IterationCounts& counts = *run.report.iterations;
   const int steps = run.extra["steps"].get<int>();
@@ -42,7 +43,7 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   std::snprintf(line, sizeof line, "quality  q_min (eq. 3) %.4f, min shape quality %.4f; inverted %zu\n",
                 run.extra["min_edge_quality"].get<double>(), run.quality.min_shape_quality, run.quality.inverted_elements);
   out << line;
-  return print_result(out, run.report, files.output, step_files);
+  return print_result(out, run.report, files.output, series.step_files());
 }
 
 }  // namespace detail

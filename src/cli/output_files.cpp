@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "cli/detail/output_files.h"
 
+#include "cli/detail/series_output.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -66,26 +68,25 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
     throw InputError(where + "output_each_step: needs \"output\" (or -o) to name the step files");
   if (output) {
     outputs.push_back({where + (c ? "output" : "-o"), *output});
-    if (c && c->output_each_step)
+    if (c && c->output_each_step) {
       for (int s = 1; s < c->steps; ++s)
         outputs.push_back({where + "output_each_step (step " + std::to_string(s) + ")", step_path(*output, s), false});
+      if (const auto pvd = series_path(*output)) outputs.push_back({where + "output_each_step (series)", *pvd, false});
+    }
   }
   if (report) outputs.push_back({where + (c ? "report" : "--report"), *report, false});
   check_outputs(outputs);
 }
 
 void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
-                       const std::optional<std::filesystem::path>& output) {
+                       const std::optional<std::filesystem::path>& output,
+                       const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   if (!report.converged || !output) return;
   WriteOptions wo;
   if (!q.quality.empty()) wo.cell_data[std::string(kQualityField)] = q.quality;
   wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
+  wo.point_vectors = point_vectors;
   write_mesh(*output, moved, wo);
-}
-
-void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written) {
-  write_mesh(step_path(output, step), mesh);
-  ++written;
 }
 
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
@@ -143,9 +144,10 @@ RunFiles run_files(const std::string& output, const std::string& report, const C
   return f;
 }
 
-void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings) {
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings,
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   run.report.case_file = files.case_file;
-  write_result_mesh(run.report, run.moved, run.quality, files.output);
+  write_result_mesh(run.report, run.moved, run.quality, files.output, point_vectors);
   stamp_times(run.report, timings);
   if (files.report) write_report(*files.report, run.report, run.extra);
 }

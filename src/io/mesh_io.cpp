@@ -84,9 +84,9 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
   write_atomically(path, true, [&](std::ostream& out) {
     try {
       switch (format) {
-        case MeshFormat::Msh41: write_msh(out, mesh, 41, options.binary); break;
-        case MeshFormat::Msh22: write_msh(out, mesh, 22, options.binary); break;
-        case MeshFormat::Vtu: write_vtu(out, mesh, options.binary, options.cell_data); break;
+        case MeshFormat::Msh41: write_msh(out, mesh, 41, options.binary, options.cell_data, options.point_vectors); break;
+        case MeshFormat::Msh22: write_msh(out, mesh, 22, options.binary, options.cell_data, options.point_vectors); break;
+        case MeshFormat::Vtu: write_vtu(out, mesh, options.binary, options.cell_data, options.point_vectors); break;
         case MeshFormat::Medit: write_medit(out, mesh); break;
       }
     } catch (const InputError& e) {  // what the format cannot hold: name the file it was for

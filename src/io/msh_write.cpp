@@ -310,11 +310,81 @@ void write_node_data(detail::OutBuffer& o, const Mesh& mesh, bool binary) {
   }
 }
 
+// The header of a $NodeData or $ElementData section as Gmsh writes it: time step 0 at time 0.
+void data_header(detail::OutBuffer& o, const std::string& section, const std::string& name, int components,
+                 std::size_t n) {
+  if (name.empty() || name.find_first_of("\"\n\r") != std::string::npos)
+    throw InputError("MSH $" + section + " cannot hold the name '" + name + "' (empty, or with a quote or line break)");
+  o << '$' << section << "\n1\n\"" << name << "\"\n1\n0\n3\n0\n" << components << '\n' << n << '\n';
+}
+
+// Vectors as $NodeData of 3 components (z = 0 in 2D), in the layout of write_node_data.
+void write_point_vectors(detail::OutBuffer& o, const Mesh& mesh, bool binary,
+                         const std::map<std::string, Eigen::MatrixXd>& vectors) {
+  for (const auto& [name, v] : vectors) {
+    MESHMORPH_CHECK(v.rows() == mesh.dim && static_cast<std::size_t>(v.cols()) == mesh.n_nodes(),
+                    "write_msh: point vectors '" + name + "' are not dim × n_nodes");
+    data_header(o, "NodeData", name, 3, mesh.n_nodes());
+    for (std::size_t i = 0; i < mesh.n_nodes(); ++i) {
+      const auto j = static_cast<Eigen::Index>(i);
+      const double c[3] = {v(0, j), mesh.dim > 1 ? v(1, j) : 0.0, mesh.dim > 2 ? v(2, j) : 0.0};
+      if (binary) {
+        o.raw(static_cast<std::int32_t>(node_tag(mesh, i)));
+        for (const double x : c) o.raw(x);
+      } else {
+        o << node_tag(mesh, i) << ' ' << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
+      }
+    }
+    if (binary) o << '\n';
+    o << "$EndNodeData\n";
+  }
+}
+
+// Per-cell values as $ElementData under the element tags the writers give (1, 2, … in the
+// order of the layout's runs); facets get NaN, as in VTU, so that every element has a value
+// (meshio refuses data that leaves elements out).
+void write_element_data(detail::OutBuffer& o, const Mesh& mesh, const Layout& L, bool binary,
+                        const std::map<std::string, std::vector<double>>& cell_data) {
+  std::map<const CellBlock*, std::size_t> first;  // index of a cell block's first cell
+  std::size_t n_cells = 0;
+  for (const CellBlock& b : mesh.cells) first[&b] = std::exchange(n_cells, n_cells + b.n_cells());
+  for (const auto& [name, values] : cell_data) {
+    MESHMORPH_CHECK(values.size() == n_cells, "write_msh: cell data '" + name + "' has " + std::to_string(values.size()) +
+                                                  " values for " + std::to_string(n_cells) + " cells");
+    std::size_t n_elements = 0;
+    for (const Run& r : L.runs) n_elements += r.end - r.begin;
+    data_header(o, "ElementData", name, 1, n_elements);
+    std::int64_t tag = 1;
+    for (const Run& r : L.runs) {
+      const auto block = first.find(r.block);
+      for (std::size_t c = r.begin; c < r.end; ++c, ++tag) {
+        const double v = block == first.end() ? std::numeric_limits<double>::quiet_NaN() : values[block->second + c];
+        if (binary) {
+          o.raw(static_cast<std::int32_t>(tag));
+          o.raw(v);
+        } else {
+          o << tag << ' ' << v << '\n';
+        }
+      }
+    }
+    if (binary) o << '\n';
+    o << "$EndElementData\n";
+  }
+}
+
 }  // namespace
 
-void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary) {
+void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary,
+               const std::map<std::string, std::vector<double>>& cell_data,
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   MESHMORPH_CHECK(version == 41 || version == 22, "write_msh: version must be 41 or 22");
   check_node_fields(mesh, binary);
+  for (const auto& [name, v] : point_vectors)
+    if (name.empty() || name.find_first_of("\"\n\r") != std::string::npos)
+      throw InputError("MSH $NodeData cannot hold the name '" + name + "' (empty, or with a quote or line break)");
+  for (const auto& [name, v] : cell_data)
+    if (name.empty() || name.find_first_of("\"\n\r") != std::string::npos)
+      throw InputError("MSH $ElementData cannot hold the name '" + name + "' (empty, or with a quote or line break)");
   const Layout L = layout_of(mesh);
   detail::OutBuffer o(out);
   write_header(o, mesh, version, binary);
@@ -326,6 +396,8 @@ void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary) {
     write_msh22(o, mesh, L, binary);
   }
   write_node_data(o, mesh, binary);
+  write_point_vectors(o, mesh, binary, point_vectors);
+  write_element_data(o, mesh, L, binary, cell_data);
   o.flush();
 }
 

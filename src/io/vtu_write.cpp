@@ -83,7 +83,8 @@ std::uint8_t cell_type_code(const CellBlock& b) {
 
 }  // namespace
 
-void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<std::string, std::vector<double>>& cell_data) {
+void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<std::string, std::vector<double>>& cell_data,
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   for (const CellBlock& b : mesh.cells)
     if (b.type == ElementType::Pyramid && b.order > 1)
       throw InputError("VTU cannot hold pyramids of order " + std::to_string(b.order) +
@@ -96,6 +97,9 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
     MESHMORPH_CHECK(static_cast<std::size_t>(values.size()) == mesh.n_nodes(),
                     "write_vtu: node field '" + name + "' has " + std::to_string(values.size()) + " values for " +
                         std::to_string(mesh.n_nodes()) + " nodes");
+  for (const auto& [name, values] : point_vectors)
+    MESHMORPH_CHECK(values.rows() == mesh.dim && static_cast<std::size_t>(values.cols()) == mesh.n_nodes(),
+                    "write_vtu: point vectors '" + name + "' are not dim × n_nodes");
   std::vector<double> points(3 * mesh.n_nodes(), 0.0);
   for (std::size_t j = 0; j < mesh.n_nodes(); ++j)
     for (int k = 0; k < mesh.dim; ++k) points[3 * j + static_cast<std::size_t>(k)] = mesh.x(k, static_cast<Eigen::Index>(j));
@@ -142,10 +146,16 @@ void write_vtu(std::ostream& out, const Mesh& mesh, bool binary, const std::map<
   data_array(o, "offsets", 1, offsets, binary, "        ");
   data_array(o, "types", 1, types, binary, "        ");
   o << "      </Cells>\n";
-  if (!mesh.node_fields.empty()) {
+  if (!mesh.node_fields.empty() || !point_vectors.empty()) {
     o << "      <PointData>\n";
     for (const auto& [name, values] : mesh.node_fields)
       data_array(o, name, 1, std::vector<double>(values.data(), values.data() + values.size()), binary, "        ");
+    for (const auto& [name, values] : point_vectors) {
+      std::vector<double> v(3 * mesh.n_nodes(), 0.0);
+      for (std::size_t j = 0; j < mesh.n_nodes(); ++j)
+        for (int k = 0; k < mesh.dim; ++k) v[3 * j + static_cast<std::size_t>(k)] = values(k, static_cast<Eigen::Index>(j));
+      data_array(o, name, 3, v, binary, "        ");
+    }
     o << "      </PointData>\n";
   }
   o << "      <CellData Scalars=\"group\">\n";

@@ -169,7 +169,7 @@ TEST(BadInput, EveryTruncationIsAnInputError) {
                           Variant{"m.mesh", MeshFormat::Medit, false}}) {
     SCOPED_TRACE(v.name);
     const fs::path full = dir / (std::string("full_") + v.name);
-    write_mesh(full, v.format == MeshFormat::Medit ? linear : m, {v.format, v.binary, {}});
+    write_mesh(full, v.format == MeshFormat::Medit ? linear : m, {v.format, v.binary, {}, {}});
     std::ifstream in(full, std::ios::binary);
     const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     const fs::path cut = dir / v.name;

@@ -223,7 +223,7 @@ TEST_F(NodeFields, WritersCheckFieldsBeforeWriting) {
   m.node_fields["short"] = Eigen::VectorXd::Zero(3);
   for (const MeshFormat f : {MeshFormat::Msh41, MeshFormat::Msh22, MeshFormat::Vtu}) {
     const fs::path p = dir_ / (f == MeshFormat::Vtu ? "short.vtu" : "short.msh");
-    EXPECT_THROW(write_mesh(p, m, {f, false, {}}), std::invalid_argument);
+    EXPECT_THROW(write_mesh(p, m, {f, false, {}, {}}), std::invalid_argument);
     EXPECT_FALSE(fs::exists(p));
   }
   m.node_fields.clear();
@@ -237,8 +237,8 @@ TEST_F(NodeFields, WritersCheckFieldsBeforeWriting) {
   m.node_fields.clear();
   m.node_fields["phi"] = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(m.n_nodes()));
   m.node_tags[0] = std::int64_t{1} << 33;
-  EXPECT_THROW(write_mesh(dir_ / "big.msh", m, {MeshFormat::Msh41, true, {}}), InputError);
-  write_mesh(dir_ / "big.msh", m, {MeshFormat::Msh41, false, {}});
+  EXPECT_THROW(write_mesh(dir_ / "big.msh", m, {MeshFormat::Msh41, true, {}, {}}), InputError);
+  write_mesh(dir_ / "big.msh", m, {MeshFormat::Msh41, false, {}, {}});
   EXPECT_EQ(read_mesh(dir_ / "big.msh").node_tags[0], std::int64_t{1} << 33);
 }
 

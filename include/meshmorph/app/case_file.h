@@ -29,6 +29,7 @@ struct CaseFile {
   std::optional<LevelSet> trim;
   int steps = 1;                     ///< ≥ 1
   bool output_each_step = false;
+  std::optional<double> dt;          ///< time between increments: written meshes carry mesh_velocity
   /// List the cells that are mirrored against their neighbours the right way round instead of
   /// refusing the mesh (orient_cells).
   bool reorient = false;

@@ -18,9 +18,13 @@ enum class MeshFormat { Msh41, Msh22, Vtu, Medit };
 struct WriteOptions {
   std::optional<MeshFormat> format;
   bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
-  /// Per-cell scalar arrays written as VTU cell data (one value per cell of Mesh::cells,
-  /// blocks concatenated); ignored by the other formats.
+  /// Per-cell scalar arrays (one value per cell of Mesh::cells, blocks concatenated): VTU
+  /// CellData, MSH $ElementData; ignored by Medit.
   std::map<std::string, std::vector<double>> cell_data;
+  /// Per-node vector arrays (Mesh::dim × n_nodes each; the displacement and mesh velocity of
+  /// a morph): VTU PointData of 3 components (z = 0 in 2D), MSH $NodeData of 3 components;
+  /// ignored by Medit.
+  std::map<std::string, Eigen::MatrixXd> point_vectors;
 };
 
 /// Reads a mesh; the format comes from the extension (.msh: MSH 2.2 or 4.1, ASCII or

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <filesystem>
+#include <map>
 #include <ostream>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "meshmorph/mesh/mesh.h"
 
@@ -41,7 +44,11 @@ Mesh parse_msh(std::string_view data, const std::filesystem::path& file);
 /// representation, so ASCII files round-trip bit for bit. Throws InputError for a mesh MSH
 /// cannot hold (MSH 2.2 node tags above 2^31 − 1, binary $NodeData with a node tag above
 /// 2^31 − 1, a field name with a quote or line break), std::invalid_argument for a node
-/// field without one value per node; both before writing anything.
-void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary);
+/// field without one value per node; both before writing anything. Each array of
+/// `cell_data` (one value per cell of Mesh::cells) follows as an $ElementData section, each
+/// of `point_vectors` (Mesh::dim × n_nodes) as a $NodeData section of 3 components.
+void write_msh(std::ostream& out, const Mesh& mesh, int version, bool binary,
+               const std::map<std::string, std::vector<double>>& cell_data = {},
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 }  // namespace meshmorph

@@ -38,7 +38,9 @@ Mesh parse_vtu(std::string_view data, const std::filesystem::path& file);
 /// groups as FieldData arrays {tag, dim}. `binary`: base64-encoded arrays, else ASCII with
 /// shortest exact doubles. Throws std::invalid_argument if a cell_data array or a node
 /// field has the wrong length, InputError for pyramids of order 2 (VTK 9.1 cannot read them).
+/// Each of `point_vectors` (Mesh::dim × n_nodes) is a Float64 PointData array of 3 components.
 void write_vtu(std::ostream& out, const Mesh& mesh, bool binary,
-               const std::map<std::string, std::vector<double>>& cell_data = {});
+               const std::map<std::string, std::vector<double>>& cell_data = {},
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 }  // namespace meshmorph

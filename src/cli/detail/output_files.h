@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -41,11 +42,8 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
 /// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
 /// method writes no mesh otherwise, DESIGN §3.1).
 void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
-                       const std::optional<std::filesystem::path>& output);
-
-/// Writes increment `step` of a series (`output_each_step`) at step_path(output, step) and
-/// counts it in `written`, for the summary.
-void write_step_mesh(const std::filesystem::path& output, int step, const Mesh& mesh, int& written);
+                       const std::optional<std::filesystem::path>& output,
+                       const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 /// The last lines of a method's summary (result, what was written, time) and its outcome.
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
@@ -69,7 +67,8 @@ RunFiles run_files(const std::string& output, const std::string& report, const C
 
 /// Writes a run's mesh (write_result_mesh) and report (write_report, with `case`, `seconds`
 /// and `timings` filled, the mesh's writing included) where `files` ask for them.
-void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings);
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings,
+               const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 /// "timings  assembly 0.41 s, validity 0.05 s, ...": the seconds by phase, for --verbose.
 std::string timings_line(const Timings& timings);
