@@ -15,6 +15,7 @@ struct RowsView {
 };
 
 RowsView rows_of(const SparseView& A) { return {A.n, A.n, A.outer, A.inner, A.values}; }
+bool block_rows_of(const RowsView& A, int b);
 RowsView rows_of(const Csr& A) { return {A.rows, A.cols, A.ptr.data(), A.idx.data(), A.val.data()}; }
 
 void spmv_rows(const RowsView& A, const double* x, double* y, int threads) {
@@ -142,6 +143,60 @@ void multiply_values_blocks(const RowsView& A, const Csr& B, Csr& C, int threads
   }
 }
 
+// C = A B for A and B with block rows of size N: the pattern node by node (one marker per
+// block instead of per entry, each row's blocks sorted), expanded to whole N×N blocks, then
+// the values block by block.
+template <int N>
+Csr multiply_blocks(const RowsView& A, const Csr& B, int threads) {
+  Csr C;
+  C.rows = A.rows;
+  C.cols = B.cols;
+  const int n_nodes = A.rows / N;
+  std::vector<std::vector<int>> blocks(static_cast<std::size_t>(n_nodes));  // column nodes of each node row
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> marker(static_cast<std::size_t>(B.cols / N), -1);
+#pragma omp for schedule(dynamic, 256)
+    for (int I = 0; I < n_nodes; ++I) {
+      std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
+      for (int ka = A.ptr[I * N]; ka < A.ptr[I * N + 1]; ka += N) {
+        const int J = A.idx[ka] / N;
+        for (int kb = B.ptr[J * N]; kb < B.ptr[J * N + 1]; kb += N) {
+          const int K = B.idx[kb] / N;
+          if (marker[K] != I) marker[K] = I, row.push_back(K);
+        }
+      }
+      std::sort(row.begin(), row.end());
+    }
+  }
+  C.ptr.assign(static_cast<std::size_t>(C.rows) + 1, 0);
+  for (int I = 0; I < n_nodes; ++I)
+    for (int r = 0; r < N; ++r)
+      C.ptr[I * N + r + 1] = C.ptr[I * N + r] + N * static_cast<int>(blocks[static_cast<std::size_t>(I)].size());
+  C.idx.resize(static_cast<std::size_t>(C.ptr.back()));
+  C.val.resize(static_cast<std::size_t>(C.ptr.back()));
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int I = 0; I < n_nodes; ++I) {
+    std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
+    for (int r = 0; r < N; ++r) {
+      int k = C.ptr[I * N + r];
+      for (const int K : row)
+        for (int c = 0; c < N; ++c) C.idx[static_cast<std::size_t>(k++)] = K * N + c;
+    }
+    std::vector<int>().swap(row);
+  }
+  multiply_values_blocks<N>(A, B, C, threads);
+  return C;
+}
+
+Csr multiply_of(const RowsView& A, const Csr& B, int block, int threads) {
+  if (block > 1 && block_rows_of(A, block) && block_rows_of(rows_of(B), block)) {
+    if (block == 3) return multiply_blocks<3>(A, B, threads);
+    if (block == 2) return multiply_blocks<2>(A, B, threads);
+  }
+  return multiply_rows(A, B, threads);
+}
+
 void multiply_values_of(const RowsView& A, const Csr& B, Csr& C, int block, int threads) {
   if (block == 3) return multiply_values_blocks<3>(A, B, C, threads);
   if (block == 2) return multiply_values_blocks<2>(A, B, C, threads);
@@ -251,8 +306,8 @@ Csr transpose(const Csr& A, int /*threads*/) {
   return T;
 }
 
-Csr multiply(const SparseView& A, const Csr& B, int threads) { return multiply_rows(rows_of(A), B, threads); }
-Csr multiply(const Csr& A, const Csr& B, int threads) { return multiply_rows(rows_of(A), B, threads); }
+Csr multiply(const SparseView& A, const Csr& B, int block, int threads) { return multiply_of(rows_of(A), B, block, threads); }
+Csr multiply(const Csr& A, const Csr& B, int block, int threads) { return multiply_of(rows_of(A), B, block, threads); }
 
 double dot(const double* a, const double* b, int n, int threads) {
   double s = 0.0;

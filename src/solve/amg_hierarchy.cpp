@@ -80,9 +80,9 @@ void AmgHierarchy::build_given_level(std::vector<double>& weights) {
   L.P = first_;
   L.R = transpose(L.P, threads);
   Level next;
-  L.AP = multiply(L.A, L.P, threads);
+  L.AP = multiply(L.A, L.P, L.row_block, threads);
   L.product_block = product_block(L);
-  next.own = multiply(L.R, L.AP, threads);
+  next.own = multiply(L.R, L.AP, L.product_block, threads);
   const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
   next.block = b;
   levels_.push_back(std::move(next));
@@ -168,7 +168,7 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   Level& L = levels_[l];
   const double rho = spectral_radius_estimate(A, L.row_block, L.inv_diag, options_.power_iterations, threads);
   const double omega = 4.0 / (3.0 * rho);
-  L.P = multiply(A, T, threads);
+  L.P = multiply(A, T, 1, threads);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int i = 0; i < A.n; ++i) {
     const double s = -omega * L.inv_diag[i];
@@ -178,10 +178,10 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
     }
   }
   L.R = transpose(L.P, threads);
-  L.AP = multiply(A, L.P, threads);
+  L.AP = multiply(A, L.P, L.row_block, threads);
   L.product_block = product_block(L);
   Level next;
-  next.own = multiply(L.R, L.AP, threads);
+  next.own = multiply(L.R, L.AP, L.product_block, threads);
   next.block = b;
   levels_.push_back(std::move(next));
   levels_.back().A = levels_.back().own.view();

@@ -157,8 +157,9 @@ detail::Csr random_block_prolongator(int rows, int coarse_nodes, int dim, unsign
 }
 
 // Products recomputed for new values of the same patterns: the values of a fresh product, by
-// the scalar route and (all three matrices of whole blocks) the block route; the block
-// products of prolongators as the scalar ones.
+// the scalar route and (all three matrices of whole blocks) the block route; fresh products
+// by the block route as by the scalar one; the block products of prolongators as the scalar
+// ones.
 TEST(AmgCsr, ProductValuesOfKnownPatternsMatchAFreshProduct) {
   for (int dim : {2, 3}) {
     SCOPED_TRACE(dim);
@@ -167,16 +168,27 @@ TEST(AmgCsr, ProductValuesOfKnownPatternsMatchAFreshProduct) {
     const detail::SparseView view = detail::view_of(A);
     const detail::Csr P = random_block_prolongator(static_cast<int>(A.rows()), 7, dim, 5);
     ASSERT_TRUE(detail::has_block_rows(P, dim));
-    detail::Csr AP = detail::multiply(view, P, 2);
+    detail::Csr AP = detail::multiply(view, P, 1, 2);
     const detail::Csr R = detail::transpose(P, 2);
-    detail::Csr RAP = detail::multiply(R, AP, 2);
+    detail::Csr RAP = detail::multiply(R, AP, 1, 2);
     ASSERT_TRUE(detail::has_block_rows(AP, dim) && detail::has_block_rows(R, dim) && detail::has_block_rows(RAP, dim));
     // New values: A's rows scaled (its pattern kept), the fresh products of them.
     Eigen::SparseMatrix<double> B = A;
     for (Eigen::Index k = 0; k < B.nonZeros(); ++k) B.valuePtr()[k] *= 1.0 + 0.3 * std::sin(static_cast<double>(k));
     const detail::SparseView view_b = detail::view_of(B);
-    const detail::Csr fresh_ap = detail::multiply(view_b, P, 2);
-    const detail::Csr fresh_rap = detail::multiply(R, fresh_ap, 2);
+    const detail::Csr fresh_ap = detail::multiply(view_b, P, 1, 2);
+    const detail::Csr fresh_rap = detail::multiply(R, fresh_ap, 1, 2);
+    // The block route of a fresh product: the same pattern, the values to rounding.
+    const detail::Csr block_ap = detail::multiply(view_b, P, dim, 2);
+    const detail::Csr block_rap = detail::multiply(R, block_ap, dim, 2);
+    ASSERT_EQ(block_ap.ptr, fresh_ap.ptr);
+    ASSERT_EQ(block_ap.idx, fresh_ap.idx);
+    ASSERT_EQ(block_rap.ptr, fresh_rap.ptr);
+    ASSERT_EQ(block_rap.idx, fresh_rap.idx);
+    for (std::size_t k = 0; k < block_ap.val.size(); ++k)
+      EXPECT_NEAR(block_ap.val[k], fresh_ap.val[k], 1e-13 * (1 + std::abs(fresh_ap.val[k])));
+    for (std::size_t k = 0; k < block_rap.val.size(); ++k)
+      EXPECT_NEAR(block_rap.val[k], fresh_rap.val[k], 1e-13 * (1 + std::abs(fresh_rap.val[k])));
     for (int block : {1, dim}) {
       SCOPED_TRACE(block);
       detail::multiply_values(view_b, P, AP, block, 2);

@@ -38,9 +38,11 @@ void residual(const SparseView& A, int block, const double* b, const double* x, 
 /// Aᵀ (rows become columns), sorted.
 Csr transpose(const Csr& A, int threads);
 /// C = A B (Gustavson, two passes: row counts then values), rows of C sorted. A is rows × k
-/// given as a view of a square matrix or a Csr; B is k × m.
-Csr multiply(const SparseView& A, const Csr& B, int threads);
-Csr multiply(const Csr& A, const Csr& B, int threads);
+/// given as a view of a square matrix or a Csr; B is k × m. Where A and B both have block
+/// rows of size `block` (has_block_rows), the pattern is found node by node and the values
+/// block by block, as multiply_values() with that block computes them.
+Csr multiply(const SparseView& A, const Csr& B, int block, int threads);
+Csr multiply(const Csr& A, const Csr& B, int block, int threads);
 /// C = A B again for new values of A or B of the same patterns: C keeps the pattern of the
 /// multiply() that made it and only its values are recomputed. With block > 1, A, B and C
 /// must all have block rows of that size (has_block_rows), and the product goes block by
