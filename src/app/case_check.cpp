@@ -147,8 +147,9 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
   if (c.trim) check.level_set(*c.trim);
   // Found before the run rather than by the writer after it.
   const int order = std::max(mesh.order(), c.order.value_or(1));
-  if (c.output && c.output->extension() == ".mesh" && order > 1)
-    JsonWhere{c.file.string(), "output"}.fail("Medit .mesh holds linear cells only; the result is of order " +
+  if (c.output && (c.output->extension() == ".mesh" || c.output->extension() == ".su2") && order > 1)
+    JsonWhere{c.file.string(), "output"}.fail((c.output->extension() == ".su2" ? "SU2 .su2" : "Medit .mesh") +
+                                              std::string(" holds linear cells only; the result is of order ") +
                                               std::to_string(order) + " (write .msh or .vtu)");
 }
 

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+#include <charconv>
+#include <string>
+#include <system_error>
+
+#include "io/detail/foam_file.h"
+#include "io/detail/out_buffer.h"
+#include "meshmorph/error.h"
+#include "meshmorph/io/atomic_file.h"
+#include "meshmorph/io/foam.h"
+
+namespace meshmorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+// "case/0.1/" names the folder 0.1 too.
+fs::path without_slash(const fs::path& path) { return path.filename().empty() ? path.parent_path() : path; }
+
+fs::path case_of(const fs::path& time_folder) {
+  const fs::path parent = without_slash(time_folder).parent_path();
+  return parent.empty() ? fs::path(".") : parent;
+}
+
+}  // namespace
+
+bool is_foam_time_folder(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_directory(case_of(path) / "constant" / "polyMesh", ec);
+}
+
+void write_foam_points(const fs::path& time_folder, const Mesh& mesh) {
+  const fs::path folder = without_slash(time_folder);
+  const std::string time = folder.filename().string();
+  double t = 0;
+  const auto [end, ec] = std::from_chars(time.data(), time.data() + time.size(), t);
+  if (time.empty() || ec != std::errc() || end != time.data() + time.size())
+    throw InputError(time_folder.string() + ": an OpenFOAM time folder is named by its time (such as 0.001), not \"" + time +
+                     "\"");
+  const fs::path constant_points = case_of(folder) / "constant" / "polyMesh" / "points";
+  detail::FoamFile original(constant_points);
+  const std::size_t n = original.points().size() / 3;
+  if (mesh.dim != 3 || n != mesh.n_nodes())
+    throw InputError(time_folder.string() + ": the mesh has " + std::to_string(mesh.n_nodes()) + " nodes (" +
+                     std::to_string(mesh.dim) + "D) where " + constant_points.string() + " holds " + std::to_string(n) +
+                     " points: only a mesh read from this case's polyMesh can be written as its points");
+  std::error_code mk;
+  fs::create_directories(folder / "polyMesh", mk);
+  if (mk) throw IoError(folder.string() + "/polyMesh: cannot create the folder: " + mk.message());
+  write_atomically(folder / "polyMesh" / "points", false, [&](std::ostream& out) {
+    detail::OutBuffer o(out);
+    o << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       vectorField;\n"
+         "    location    \""
+      << time << "/polyMesh\";\n    object      points;\n}\n\n"
+      << mesh.n_nodes() << "\n(\n";
+    for (Eigen::Index j = 0; j < mesh.x.cols(); ++j) o << '(' << mesh.x(0, j) << ' ' << mesh.x(1, j) << ' ' << mesh.x(2, j) << ")\n";
+    o << ")\n";
+    o.flush();
+  });
+}
+
+}  // namespace meshmorph
