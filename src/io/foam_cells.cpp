@@ -96,27 +96,30 @@ class CellBuilder {
     }
     const int n_nodes = n_corners_of(shape->type);
     if (detail::repeated_node(nodes.data(), n_nodes) >= 0) fail_closed(c, *shape);
-    // Every face of the shape must be one of the cell's, facing out of it.
+    // Every face of the shape must be one of the cell's, facing out of it. Where all the faces
+    // but the base are turned over, the base is the face that is.
     std::array<bool, 6> used{};
+    int flipped = 0, first_flipped = -1;
     for (int r = 0; r < shape->n_faces; ++r) {
       const auto& ref = shape->faces[static_cast<std::size_t>(r)];
       const int n = ref[3] < 0 ? 3 : 4;
       std::array<std::int32_t, 4> want{}, reversed{};
       for (int k = 0; k < n; ++k) want[k] = nodes[static_cast<std::size_t>(ref[k])], reversed[n - 1 - k] = want[k];
-      int match = -1, flipped = -1;
+      int match = -1;
+      bool turned = false;
       for (int k = 0; k < f.n && match < 0; ++k) {
         if (used[k] || f.size[k] != n) continue;
         if (same_cycle(f.v[k].data(), want.data(), n)) match = k;
-        else if (same_cycle(f.v[k].data(), reversed.data(), n)) flipped = k;
+        else if (same_cycle(f.v[k].data(), reversed.data(), n)) match = k, turned = true;
       }
-      if (match >= 0) {
-        used[match] = true;
-      } else if (flipped >= 0) {
-        throw InputError(dir_.string() + ": face " + std::to_string(f.id[flipped]) + " is oriented against the other faces of cell " +
-                         std::to_string(c) + " (a face points out of its owner and into its neighbour)");
-      } else {
-        fail_closed(c, *shape);
-      }
+      if (match < 0) fail_closed(c, *shape);
+      used[match] = true;
+      if (turned && flipped++ == 0) first_flipped = match;
+    }
+    if (flipped > 0) {
+      const std::int64_t face = f.id[flipped == f.n - 1 ? b : first_flipped];
+      throw InputError(dir_.string() + ": face " + std::to_string(face) + " is oriented against the other faces of cell " +
+                       std::to_string(c) + " (a face points out of its owner and into its neighbour)");
     }
     return *shape;
   }
