@@ -40,7 +40,10 @@ class Su2Reader {
         if (have_elements_) c_.fail_at(at, "second NELEM= section");
         have_elements_ = true;
         const std::size_t n = count("number of elements");
-        for (std::size_t e = 0; e < n; ++e) element(0, true);
+        for (std::size_t e = 0; e < n; ++e) {
+          section_goes_on("NELEM", n, e, "elements");
+          element(0, true);
+        }
       } else if (key == "NPOIN") {
         points(at);
       } else if (key == "NMARK") {
@@ -93,6 +96,16 @@ class Su2Reader {
     return c_.pos() >= c_.text().size() || c_.text()[c_.pos()] == '\n';
   }
 
+  // Fails where a section of `n` entries ends (the file, or a keyword) after `i`.
+  void section_goes_on(std::string_view key, std::uint64_t n, std::uint64_t i, std::string_view what) {
+    if (!next_line()) c_.fail("unexpected end of file: " + std::string(key) + "= announces " + std::to_string(n) + " " +
+                              std::string(what) + ", the file holds " + std::to_string(i));
+    const std::size_t end = c_.text().find_first_of(" \t\r\n", c_.pos());
+    if (c_.text().substr(c_.pos(), end - c_.pos()).find('=') != std::string_view::npos)
+      c_.fail(std::string(key) + "= announces " + std::to_string(n) + " " + std::string(what) + ", the section holds " +
+              std::to_string(i));
+  }
+
   // Only blank space may follow on the line.
   void end_of_line(std::string_view what) {
     if (!at_end_of_line())
@@ -112,7 +125,6 @@ class Su2Reader {
 
   // One element line: cells (NELEM, with an optional index) or a marker's facets.
   void element(std::int32_t marker, bool cell) {
-    if (!next_line()) c_.fail("unexpected end of file, expected an element");
     const int id = c_.integer<int>("element type");
     const detail::Su2Type* t = detail::su2_type(id);
     const int want = cell ? dim_ : dim_ - 1;
@@ -153,7 +165,7 @@ class Su2Reader {
     builder_.tags.reserve(n);
     builder_.xyz.reserve(3 * n);
     for (std::uint64_t i = 0; i < n; ++i) {
-      if (!next_line()) c_.fail("unexpected end of file, expected point " + std::to_string(i));
+      section_goes_on("NPOIN", n, i, "points");
       double x[3] = {0, 0, 0};
       for (int k = 0; k < dim_; ++k) {
         if (at_end_of_line()) c_.fail("point " + std::to_string(i) + " has " + std::to_string(k) + " coordinates, NDIME= " + std::to_string(dim_));
@@ -167,8 +179,8 @@ class Su2Reader {
   }
 
   void marker() {
-    if (!next_line()) c_.fail("unexpected end of file, expected MARKER_TAG=");
-    if (keyword() != "MARKER_TAG") c_.fail_at(c_.token_start(), "expected MARKER_TAG=");
+    if (!next_line() || !c_.text().substr(c_.pos()).starts_with("MARKER_TAG=")) c_.fail("expected MARKER_TAG=");
+    keyword();
     c_.skip_blank();
     const std::size_t start = c_.pos();
     c_.skip_line();
@@ -178,10 +190,14 @@ class Su2Reader {
     if (const auto bad = group_name_problem(name)) c_.fail_at(start, "marker name " + *bad);
     auto [it, added] = tags_.emplace(std::string(name), static_cast<std::int32_t>(tags_.size()) + 1);
     if (added) builder_.named_groups.push_back(PhysicalGroup{dim_ - 1, it->second, it->first});
-    if (!next_line()) c_.fail("unexpected end of file, expected MARKER_ELEMS=");
-    if (keyword() != "MARKER_ELEMS") c_.fail_at(c_.token_start(), "expected MARKER_ELEMS= after MARKER_TAG=");
+    if (!next_line() || !c_.text().substr(c_.pos()).starts_with("MARKER_ELEMS="))
+      c_.fail("expected MARKER_ELEMS= after MARKER_TAG=");
+    keyword();
     const std::size_t n = count("number of marker elements");
-    for (std::size_t e = 0; e < n; ++e) element(it->second, false);
+    for (std::size_t e = 0; e < n; ++e) {
+      section_goes_on("MARKER_ELEMS", n, e, "elements");
+      element(it->second, false);
+    }
   }
 
   detail::Cursor c_;
