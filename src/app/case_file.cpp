@@ -146,7 +146,8 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
     for (const auto& item : root.items()) c.keys.push_back(item.key());
   if (const json* j = mesh_required ? &r.required("mesh") : r.optional("mesh")) {
     const std::string mesh_name = detail::read_string(*j, r.at("mesh"));
-    const std::filesystem::path folder = std::filesystem::path(mesh_name).is_absolute() ? std::filesystem::path(mesh_name) : base / mesh_name;
+    const std::filesystem::path folder =
+        std::filesystem::path(mesh_name).is_absolute() ? std::filesystem::path(mesh_name) : base / mesh_name;
     std::error_code ec;  // a folder is an OpenFOAM case (io/foam.h)
     c.mesh = std::filesystem::is_directory(folder, ec) ? folder : detail::existing_file(mesh_name, base, r.at("mesh"));
   }

@@ -38,7 +38,8 @@ WriteOptions convert_options(const std::string& output, bool binary, bool msh22)
   const std::string ext = std::filesystem::path(output).extension().string();
   const bool foam = ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && is_foam_time_folder(output);
   if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && !foam)
-    throw InputError(output + ": unknown output format \"" + ext + "\" (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case's time folder)");
+    throw InputError(output + ": unknown output format \"" + ext +
+                     "\" (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case's time folder)");
   if (msh22 && ext != ".msh") throw InputError(output + ": --msh22 needs a .msh output file");
   if (binary && (ext == ".mesh" || ext == ".su2" || foam))
     throw InputError(output + ": --binary is not available for " + (foam ? "OpenFOAM points" : ext) + " output");

@@ -24,11 +24,12 @@ struct Shape {
   std::array<std::array<int, 4>, 6> faces;  // -1 ends a triangle
 };
 constexpr Shape k_tet{ElementType::Tetrahedron, 4, {{{0, 2, 1, -1}, {0, 1, 3, -1}, {0, 3, 2, -1}, {1, 2, 3, -1}}}};
-constexpr Shape k_pyramid{ElementType::Pyramid, 5, {{{0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}}}};
-constexpr Shape k_prism{ElementType::Prism, 5, {{{0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}}};
-constexpr Shape k_hex{ElementType::Hexahedron,
-                      6,
-                      {{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
+constexpr Shape k_pyramid{
+    ElementType::Pyramid, 5, {{{0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}}}};
+constexpr Shape k_prism{
+    ElementType::Prism, 5, {{{0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}}};
+constexpr Shape k_hex{
+    ElementType::Hexahedron, 6, {{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
 
 // A cell's faces (the first 6 of them) with their points in the order that faces out of the
 // cell, and how many it has of each size.
@@ -66,7 +67,9 @@ class CellBuilder {
     while (b < f.n && f.size[b] != (shape == &k_pyramid || shape == &k_hex ? 4 : 3)) ++b;
     const int nb = f.size[b];
     for (int k = 0; k < nb; ++k) nodes[static_cast<std::size_t>(k)] = f.v[b][static_cast<std::size_t>((nb - k) % nb)];
-    const auto in_base = [&](std::int32_t p) { return std::find(f.v[b].begin(), f.v[b].begin() + nb, p) != f.v[b].begin() + nb; };
+    const auto in_base = [&](std::int32_t p) {
+      return std::find(f.v[b].begin(), f.v[b].begin() + nb, p) != f.v[b].begin() + nb;
+    };
     if (shape == &k_tet || shape == &k_pyramid) {
       std::int32_t apex = -1;
       for (int k = 0; k < f.n; ++k)
@@ -109,8 +112,10 @@ class CellBuilder {
       bool turned = false;
       for (int k = 0; k < f.n && match < 0; ++k) {
         if (used[k] || f.size[k] != n) continue;
-        if (same_cycle(f.v[k].data(), want.data(), n)) match = k;
-        else if (same_cycle(f.v[k].data(), reversed.data(), n)) match = k, turned = true;
+        if (same_cycle(f.v[k].data(), want.data(), n))
+          match = k;
+        else if (same_cycle(f.v[k].data(), reversed.data(), n))
+          match = k, turned = true;
       }
       if (match < 0) fail_closed(c, *shape);
       used[match] = true;
@@ -118,8 +123,9 @@ class CellBuilder {
     }
     if (flipped > 0) {
       const std::int64_t face = f.id[flipped == f.n - 1 ? b : first_flipped];
-      throw InputError(dir_.string() + ": face " + std::to_string(face) + " is oriented against the other faces of cell " +
-                       std::to_string(c) + " (a face points out of its owner and into its neighbour)");
+      throw InputError(dir_.string() + ": face " + std::to_string(face) +
+                       " is oriented against the other faces of cell " + std::to_string(c) +
+                       " (a face points out of its owner and into its neighbour)");
     }
     return *shape;
   }
@@ -127,12 +133,14 @@ class CellBuilder {
  private:
   [[noreturn]] void fail_shape(std::int64_t c, const CellFaces& f) const {
     const std::string what = std::to_string(f.n) + " faces (" + std::to_string(f.tri) + " triangles, " +
-                             std::to_string(f.quad) + " quadrilaterals, " + std::to_string(f.polygons) + " of more points)";
+                             std::to_string(f.quad) + " quadrilaterals, " + std::to_string(f.polygons) +
+                             " of more points)";
     throw InputError(dir_.string() + ": cell " + std::to_string(c) + " has " + what +
                      ": meshmorph reads tetrahedra, prisms, pyramids and hexahedra only");
   }
   [[noreturn]] void fail_closed(std::int64_t c, const Shape& s) const {
-    throw InputError(dir_.string() + ": cell " + std::to_string(c) + ": its faces do not close a " + std::string(name_of(s.type)));
+    throw InputError(dir_.string() + ": cell " + std::to_string(c) + ": its faces do not close a " +
+                     std::string(name_of(s.type)));
   }
 
   fs::path dir_;
@@ -148,22 +156,27 @@ Files locate(const fs::path& path) {
   std::error_code ec;
   const fs::path base = path.extension() == ".foam" && !fs::is_directory(path, ec) ? path.parent_path() : path;
   const fs::path folder = base.empty() ? fs::path(".") : base;
-  const auto has_mesh = [&](const fs::path& d) { return fs::exists(d / "faces", ec) || fs::exists(d / "faces.gz", ec); };
-  if (has_mesh(folder / "constant" / "polyMesh")) return {folder / "constant" / "polyMesh", folder / "constant" / "polyMesh" / "points"};
+  const auto has_mesh = [&](const fs::path& d) {
+    return fs::exists(d / "faces", ec) || fs::exists(d / "faces.gz", ec);
+  };
+  if (has_mesh(folder / "constant" / "polyMesh"))
+    return {folder / "constant" / "polyMesh", folder / "constant" / "polyMesh" / "points"};
   if (has_mesh(folder)) return {folder, folder / "points"};
   if (fs::exists(folder / "polyMesh" / "points", ec)) {
     if (has_mesh(folder / "polyMesh")) return {folder / "polyMesh", folder / "polyMesh" / "points"};
     const fs::path constant = folder.parent_path() / "constant" / "polyMesh";
     if (has_mesh(constant)) return {constant, folder / "polyMesh" / "points"};
   }
-  throw InputError(path.string() + ": no OpenFOAM polyMesh here (a case folder holds constant/polyMesh/faces, "
+  throw InputError(path.string() +
+                   ": no OpenFOAM polyMesh here (a case folder holds constant/polyMesh/faces, "
                    "a time folder polyMesh/points)");
 }
 
 fs::path existing(const fs::path& file) {
   std::error_code ec;
   if (!fs::exists(file, ec) && fs::exists(file.string() + ".gz", ec))
-    throw InputError(file.string() + ".gz: compressed polyMesh files are not read (gunzip them, or writeCompression off)");
+    throw InputError(file.string() +
+                     ".gz: compressed polyMesh files are not read (gunzip them, or writeCompression off)");
   return file;
 }
 
@@ -176,7 +189,8 @@ Mesh read_foam(const fs::path& path) {
   builder.xyz = points_file.points();
   points_file.expect_end();
   const std::size_t n_points = builder.xyz.size() / 3;
-  if (n_points > static_cast<std::size_t>(INT32_MAX)) points_file.fail_at(points_file.list_at(), "more than 2^31 - 1 points");
+  if (n_points > static_cast<std::size_t>(INT32_MAX))
+    points_file.fail_at(points_file.list_at(), "more than 2^31 - 1 points");
   builder.tags.resize(n_points);
   for (std::size_t j = 0; j < n_points; ++j) builder.tags[j] = static_cast<std::int64_t>(j) + 1;
 
@@ -215,8 +229,8 @@ Mesh read_foam(const fs::path& path) {
     next += p.n_faces;
   }
   if (next != n_faces)
-    boundary_file.fail_at(boundary_file.list_at(), "the patches leave the boundary faces " + std::to_string(next) + ".." +
-                                                       std::to_string(n_faces - 1) + " without a patch");
+    boundary_file.fail_at(boundary_file.list_at(), "the patches leave the boundary faces " + std::to_string(next) +
+                                                       ".." + std::to_string(n_faces - 1) + " without a patch");
 
   // Cells: their faces, oriented out of them.
   std::int64_t n_cells = 0;
@@ -226,7 +240,8 @@ Mesh read_foam(const fs::path& path) {
   const auto add = [&](std::int64_t c, std::int64_t f, bool out) {
     CellFaces& cf = cells[static_cast<std::size_t>(c)];
     const std::int64_t* p = faces.points.data() + faces.offsets[static_cast<std::size_t>(f)];
-    const auto k = static_cast<int>(faces.offsets[static_cast<std::size_t>(f) + 1] - faces.offsets[static_cast<std::size_t>(f)]);
+    const auto k =
+        static_cast<int>(faces.offsets[static_cast<std::size_t>(f) + 1] - faces.offsets[static_cast<std::size_t>(f)]);
     (k == 3 ? cf.tri : k == 4 ? cf.quad : cf.polygons) += 1;
     if (cf.n < 6 && k <= 4) {
       cf.id[cf.n] = f;

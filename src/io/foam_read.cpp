@@ -34,16 +34,19 @@ FoamFile::FoamFile(const std::filesystem::path& path) : data_(read_file(path)), 
     if (key == "format") format = v, format_at = key_at;
     if (key == "class") class_ = v;
     if (key == "arch") {
-      if (v.find("MSB") != std::string_view::npos) c_.fail_at(key_at, "binary polyMesh with a foreign byte order (MSB)");
+      if (v.find("MSB") != std::string_view::npos)
+        c_.fail_at(key_at, "binary polyMesh with a foreign byte order (MSB)");
       if (v.find("label=64") != std::string_view::npos) label_bytes_ = 8;
       if (v.find("scalar=32") != std::string_view::npos) scalar_bytes_ = 4;
       if (v.find("scalar=128") != std::string_view::npos) c_.fail_at(key_at, "128-bit scalars are not supported");
     }
   }
   c_.seek(c_.pos() + 1);
-  if (format == "binary") binary_ = true;
+  if (format == "binary")
+    binary_ = true;
   else if (format != "ascii")
-    c_.fail_at(format_at, format.empty() ? "the FoamFile header has no format" : "unknown format '" + Cursor::shorten(format) + "'");
+    c_.fail_at(format_at, format.empty() ? "the FoamFile header has no format"
+                                         : "unknown format '" + Cursor::shorten(format) + "'");
 }
 
 void FoamFile::skip() {
@@ -109,7 +112,8 @@ double FoamFile::scalar(std::string_view what) {
   const char* b = t.data() + (!t.empty() && t[0] == '+' ? 1 : 0);
   const auto [end, ec] = std::from_chars(b, t.data() + t.size(), v);
   if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    c_.fail_at(c_.token_start(), "expected " + std::string(what) + " (a finite number), got '" + Cursor::shorten(t) + "'");
+    c_.fail_at(c_.token_start(),
+               "expected " + std::string(what) + " (a finite number), got '" + Cursor::shorten(t) + "'");
   return v;
 }
 
@@ -152,7 +156,8 @@ std::int64_t FoamFile::list_start(std::string_view what, bool& uniform) {
     c_.seek(c_.pos() + 1);
     return n;
   }
-  if (peek() != '(') c_.fail_at(c_.pos() < data_.size() ? c_.pos() : at, "expected the " + std::string(what) + " list: N ( … )");
+  if (peek() != '(')
+    c_.fail_at(c_.pos() < data_.size() ? c_.pos() : at, "expected the " + std::string(what) + " list: N ( … )");
   c_.seek(c_.pos() + 1);
   if (binary_ && n < 0) c_.fail("a binary list needs a size");
   return n;
@@ -191,7 +196,8 @@ std::vector<std::int64_t> FoamFile::labels(std::string_view what) {
   } else {
     if (n > 0) out.reserve(static_cast<std::size_t>(n));
     while (peek() != ')') {
-      if (c_.pos() >= data_.size()) c_.fail("unexpected end of file, expected ')' closing the " + std::string(what) + " list");
+      if (c_.pos() >= data_.size())
+        c_.fail("unexpected end of file, expected ')' closing the " + std::string(what) + " list");
       out.push_back(label(what));
     }
     c_.seek(c_.pos() + 1);
@@ -252,7 +258,8 @@ FoamFaces FoamFile::faces(std::int64_t n_points) {
     list_at_ = at;
     return f;
   }
-  if (class_ != "faceList") c_.fail_at(0, "expected class faceList or faceCompactList, got '" + Cursor::shorten(class_) + "'");
+  if (class_ != "faceList")
+    c_.fail_at(0, "expected class faceList or faceCompactList, got '" + Cursor::shorten(class_) + "'");
   if (binary_) c_.fail_at(0, "a binary faceList (OpenFOAM writes binary faces as faceCompactList)");
   bool uniform = false;
   const std::size_t at = (skip(), c_.pos());
@@ -274,8 +281,10 @@ FoamFaces FoamFile::faces(std::int64_t n_points) {
     }
     c_.seek(c_.pos() + 1);
     const auto got = static_cast<std::int64_t>(f.points.size() - before);
-    if (k >= 0 && got != k) c_.fail_at(face_at, "the face announces " + std::to_string(k) + " points but holds " + std::to_string(got));
-    if (got < 3) c_.fail_at(face_at, "face " + std::to_string(f.size()) + " has " + std::to_string(got) + " points (at least 3)");
+    if (k >= 0 && got != k)
+      c_.fail_at(face_at, "the face announces " + std::to_string(k) + " points but holds " + std::to_string(got));
+    if (got < 3)
+      c_.fail_at(face_at, "face " + std::to_string(f.size()) + " has " + std::to_string(got) + " points (at least 3)");
     f.offsets.push_back(static_cast<std::int64_t>(f.points.size()));
   }
   c_.seek(c_.pos() + 1);
@@ -285,7 +294,8 @@ FoamFaces FoamFile::faces(std::int64_t n_points) {
 }
 
 std::vector<FoamPatch> FoamFile::patches() {
-  if (class_ != "polyBoundaryMesh") c_.fail_at(0, "expected class polyBoundaryMesh, got '" + Cursor::shorten(class_) + "'");
+  if (class_ != "polyBoundaryMesh")
+    c_.fail_at(0, "expected class polyBoundaryMesh, got '" + Cursor::shorten(class_) + "'");
   binary_ = false;  // the boundary dictionary is text in binary cases too
   bool uniform = false;
   const std::size_t at = (skip(), c_.pos());
@@ -333,7 +343,8 @@ std::vector<FoamPatch> FoamFile::patches() {
 }
 
 void FoamFile::expect_end() {
-  if (peek() != '\0') c_.fail("unexpected '" + Cursor::shorten(std::string_view(&data_[c_.pos()], 1)) + "' after the list");
+  if (peek() != '\0')
+    c_.fail("unexpected '" + Cursor::shorten(std::string_view(&data_[c_.pos()], 1)) + "' after the list");
 }
 
 }  // namespace meshmorph::detail

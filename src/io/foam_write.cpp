@@ -35,8 +35,8 @@ void write_foam_points(const fs::path& time_folder, const Mesh& mesh) {
   double t = 0;
   const auto [end, ec] = std::from_chars(time.data(), time.data() + time.size(), t);
   if (time.empty() || ec != std::errc() || end != time.data() + time.size())
-    throw InputError(time_folder.string() + ": an OpenFOAM time folder is named by its time (such as 0.001), not \"" + time +
-                     "\"");
+    throw InputError(time_folder.string() + ": an OpenFOAM time folder is named by its time (such as 0.001), not \"" +
+                     time + "\"");
   const fs::path constant_points = case_of(folder) / "constant" / "polyMesh" / "points";
   detail::FoamFile original(constant_points);
   const std::size_t n = original.points().size() / 3;
@@ -53,7 +53,8 @@ void write_foam_points(const fs::path& time_folder, const Mesh& mesh) {
          "    location    \""
       << time << "/polyMesh\";\n    object      points;\n}\n\n"
       << mesh.n_nodes() << "\n(\n";
-    for (Eigen::Index j = 0; j < mesh.x.cols(); ++j) o << '(' << mesh.x(0, j) << ' ' << mesh.x(1, j) << ' ' << mesh.x(2, j) << ")\n";
+    for (Eigen::Index j = 0; j < mesh.x.cols(); ++j)
+      o << '(' << mesh.x(0, j) << ' ' << mesh.x(1, j) << ' ' << mesh.x(2, j) << ")\n";
     o << ")\n";
     o.flush();
   });

@@ -37,7 +37,8 @@ Mesh read_mesh(const std::filesystem::path& path) {
   if (ext == ".mesh") return read_medit(path);
   if (ext == ".su2") return read_su2(path);
   if (std::error_code ec; ext == ".foam" || std::filesystem::is_directory(path, ec)) return read_foam(path);
-  throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case folder)");
+  throw InputError(path.string() + ": unknown mesh format '" + ext +
+                   "' (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case folder)");
 }
 
 std::optional<std::string> group_name_problem(std::string_view name) {
@@ -86,7 +87,9 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
     else if (ext == ".mesh") format = MeshFormat::Medit;
     else if (ext == ".su2") format = MeshFormat::Su2;
     else if (is_foam_time_folder(path)) format = MeshFormat::Foam;
-    else throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu, .mesh, .su2 or the time folder of an OpenFOAM case)");
+    else
+      throw InputError(path.string() + ": unknown mesh format '" + ext +
+                       "' (expected .msh, .vtu, .mesh, .su2 or the time folder of an OpenFOAM case)");
   }
   if (format == MeshFormat::Foam) return write_foam_points(path, mesh);
   write_atomically(path, true, [&](std::ostream& out) {

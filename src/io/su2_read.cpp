@@ -65,8 +65,8 @@ class Su2Reader {
     if (!have_points_) c_.fail("no NPOIN= section");
     const auto n_points = static_cast<std::int64_t>(builder_.tags.size());
     if (max_node_ >= n_points)
-      c_.fail_at(max_node_at_, "node id " + std::to_string(max_node_) + " is outside 0.." + std::to_string(n_points - 1) +
-                                   " (NPOIN= " + std::to_string(n_points) + ")");
+      c_.fail_at(max_node_at_, "node id " + std::to_string(max_node_) + " is outside 0.." +
+                                   std::to_string(n_points - 1) + " (NPOIN= " + std::to_string(n_points) + ")");
     return builder_.finish(c_.where(c_.pos()));
   }
 
@@ -98,8 +98,9 @@ class Su2Reader {
 
   // Fails where a section of `n` entries ends (the file, or a keyword) after `i`.
   void section_goes_on(std::string_view key, std::uint64_t n, std::uint64_t i, std::string_view what) {
-    if (!next_line()) c_.fail("unexpected end of file: " + std::string(key) + "= announces " + std::to_string(n) + " " +
-                              std::string(what) + ", the file holds " + std::to_string(i));
+    if (!next_line())
+      c_.fail("unexpected end of file: " + std::string(key) + "= announces " + std::to_string(n) + " " +
+              std::string(what) + ", the file holds " + std::to_string(i));
     const std::size_t end = c_.text().find_first_of(" \t\r\n", c_.pos());
     if (c_.text().substr(c_.pos(), end - c_.pos()).find('=') != std::string_view::npos)
       c_.fail(std::string(key) + "= announces " + std::to_string(n) + " " + std::string(what) + ", the section holds " +
@@ -118,7 +119,8 @@ class Su2Reader {
 
   std::size_t count(std::string_view what) {
     const auto n = c_.integer<std::uint64_t>(what);
-    if (n > c_.remaining() / 2 + 1) c_.fail_at(c_.token_start(), "count " + std::to_string(n) + " is larger than the file can hold");
+    if (n > c_.remaining() / 2 + 1)
+      c_.fail_at(c_.token_start(), "count " + std::to_string(n) + " is larger than the file can hold");
     end_of_line(what);
     return static_cast<std::size_t>(n);
   }
@@ -136,9 +138,11 @@ class Su2Reader {
     std::int32_t file_nodes[8];
     for (int j = 0; j < k; ++j) {
       if (at_end_of_line())
-        c_.fail("element type " + std::to_string(id) + " has " + std::to_string(k) + " nodes, the line holds " + std::to_string(j));
+        c_.fail("element type " + std::to_string(id) + " has " + std::to_string(k) + " nodes, the line holds " +
+                std::to_string(j));
       const auto v = c_.integer<std::int64_t>("node id");
-      if (v < 0 || v > INT32_MAX) c_.fail_at(c_.token_start(), "node id " + std::to_string(v) + " is negative or too large");
+      if (v < 0 || v > INT32_MAX)
+        c_.fail_at(c_.token_start(), "node id " + std::to_string(v) + " is negative or too large");
       if (v > max_node_) max_node_ = v, max_node_at_ = c_.token_start();
       file_nodes[j] = static_cast<std::int32_t>(v);
       if (detail::repeated_node(file_nodes, j + 1) >= 0)
@@ -158,7 +162,8 @@ class Su2Reader {
     if (have_points_) c_.fail_at(at, "second NPOIN= section");
     have_points_ = true;
     const auto n = c_.integer<std::uint64_t>("number of points");
-    if (n > c_.remaining() / 4 + 1) c_.fail_at(c_.token_start(), "count " + std::to_string(n) + " is larger than the file can hold");
+    if (n > c_.remaining() / 4 + 1)
+      c_.fail_at(c_.token_start(), "count " + std::to_string(n) + " is larger than the file can hold");
     // A partition's count of its own points may follow.
     if (!at_end_of_line()) c_.integer<std::uint64_t>("number of domain points");
     end_of_line("NPOIN=");
@@ -168,7 +173,9 @@ class Su2Reader {
       section_goes_on("NPOIN", n, i, "points");
       double x[3] = {0, 0, 0};
       for (int k = 0; k < dim_; ++k) {
-        if (at_end_of_line()) c_.fail("point " + std::to_string(i) + " has " + std::to_string(k) + " coordinates, NDIME= " + std::to_string(dim_));
+        if (at_end_of_line())
+          c_.fail("point " + std::to_string(i) + " has " + std::to_string(k) +
+                  " coordinates, NDIME= " + std::to_string(dim_));
         x[k] = c_.real("coordinate");
       }
       if (!at_end_of_line()) c_.integer<std::int64_t>("point index");

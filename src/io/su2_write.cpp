@@ -25,8 +25,8 @@ void write_su2(std::ostream& out, const Mesh& mesh) {
   for (const auto* list : {&mesh.facets, &mesh.cells})
     for (const CellBlock& b : *list)
       if (b.type != ElementType::Point && b.order != 1)
-        throw InputError("SU2 .su2 holds linear cells only; the mesh has " + std::string(name_of(b.type)) + "s of order " +
-                         std::to_string(b.order));
+        throw InputError("SU2 .su2 holds linear cells only; the mesh has " + std::string(name_of(b.type)) +
+                         "s of order " + std::to_string(b.order));
   struct Marker {
     std::string name;
     std::int32_t tag;

@@ -139,7 +139,9 @@ TEST(BadInput, EveryFileGivesInputErrorNamingFileAndPosition) {
       const std::string msg = e.what();
       EXPECT_NE(msg.find(name), std::string::npos) << msg;
       // An OpenFOAM case (a folder) is named with its file and line, or its polyMesh folder and a cell or face.
-      const bool case_position = entry.is_directory() && std::regex_search(msg, std::regex(name + "/constant/polyMesh(/[a-z]+: line|: cell|: face) [0-9]+"));
+      const bool case_position =
+          entry.is_directory() &&
+          std::regex_search(msg, std::regex(name + "/constant/polyMesh(/[a-z]+: line|: cell|: face) [0-9]+"));
       EXPECT_TRUE(msg.find(name + ": line ") != std::string::npos || msg.find(name + ": byte offset ") != std::string::npos ||
                   case_position)
           << msg;

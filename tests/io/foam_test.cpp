@@ -4,6 +4,9 @@
 // binary`; hybrid_layer by gmshToFoam from tests/data/hybrid_layer.msh in MSH 2.2), the moved
 // points written back into a time folder, and what is refused. OpenFOAM's own checkMesh on a
 // morphed case is tests/io/foam_check_mesh.sh.
+#include "meshmorph/io/foam.h"
+
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,13 +16,10 @@
 #include <numeric>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "io/mesh_compare.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/orientation.h"
 #include "meshmorph/fem/structured.h"
-#include "meshmorph/io/foam.h"
 #include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
@@ -40,7 +40,8 @@ std::size_t group_facets(const Mesh& m, const std::string& name) {
   const auto g = m.find_group(name);
   if (!g) return 0;
   std::size_t n = 0;
-  for (const CellBlock& b : m.facets) n += static_cast<std::size_t>(std::count(b.physical.begin(), b.physical.end(), g->tag));
+  for (const CellBlock& b : m.facets)
+    n += static_cast<std::size_t>(std::count(b.physical.begin(), b.physical.end(), g->tag));
   return n;
 }
 
@@ -135,7 +136,8 @@ TEST(Foam, MovedPointsRoundTripThroughATimeFolder) {
   // Written again from the time folder's mesh: the same file.
   write_mesh(dir / "0.5/", back);
   EXPECT_EQ(bytes(dir / "0.5" / "polyMesh" / "points"),
-            bytes(dir / "0.25" / "polyMesh" / "points").replace(bytes(dir / "0.25" / "polyMesh" / "points").find("0.25/"), 5, "0.5/"));
+            bytes(dir / "0.25" / "polyMesh" / "points")
+                .replace(bytes(dir / "0.25" / "polyMesh" / "points").find("0.25/"), 5, "0.5/"));
 }
 
 TEST(Foam, OnlyTheCasesOwnMeshGoesIntoItsTimeFolders) {
@@ -152,7 +154,8 @@ TEST(Foam, OnlyTheCasesOwnMeshGoesIntoItsTimeFolders) {
     write_foam_points(dir / "later", read_mesh(dir));
     ADD_FAILURE() << "no exception";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("an OpenFOAM time folder is named by its time"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("an OpenFOAM time folder is named by its time"), std::string::npos)
+        << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "later"));
 }
@@ -170,7 +173,8 @@ TEST(Foam, AFaceTurnedOverIsNamed) {
     read_mesh(dir);
     ADD_FAILURE() << "no exception";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("face 0 is oriented against the other faces of cell"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("face 0 is oriented against the other faces of cell"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -2,6 +2,9 @@
 // SU2 .su2: files written by Gmsh 4.8.4 (tests/data/io/gmsh_*.su2: `gmsh -3 cube.geo -format su2`,
 // `gmsh -3 ../hybrid_layer.geo -format su2`, `gmsh -2 square_hole.geo -format su2`), round trips
 // of every linear type, VTK's wedge order, and what the format cannot hold.
+#include "meshmorph/io/su2.h"
+
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,14 +15,11 @@
 #include <sstream>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "io/mesh_compare.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/orientation.h"
 #include "meshmorph/fem/structured.h"
 #include "meshmorph/io/mesh_io.h"
-#include "meshmorph/io/su2.h"
 
 namespace meshmorph {
 namespace {
@@ -53,7 +53,8 @@ TEST(Su2, GmshTetrahedraWithMarkers) {
   EXPECT_EQ(m.dim, 3);
   ASSERT_EQ(m.cells.size(), 1u);
   EXPECT_EQ(m.cells[0].type, ElementType::Tetrahedron);
-  EXPECT_EQ(test::sorted_groups(m), (std::vector<std::tuple<int, int, std::string>>{{2, 1, "bottom"}, {2, 2, "sides"}}));
+  EXPECT_EQ(test::sorted_groups(m),
+            (std::vector<std::tuple<int, int, std::string>>{{2, 1, "bottom"}, {2, 2, "sides"}}));
   expect_positive_cells(m, 1.0);
   const auto bottom = m.find_group("bottom");
   ASSERT_TRUE(bottom.has_value());
@@ -73,7 +74,8 @@ TEST(Su2, GmshHybridCellsOfEveryType) {
   ASSERT_EQ(msh.n_nodes(), m.n_nodes());
   EXPECT_EQ((msh.x - m.x).cwiseAbs().maxCoeff(), 0.0);
   for (const CellBlock& b : msh.cells) {
-    const auto same = std::find_if(m.cells.begin(), m.cells.end(), [&](const CellBlock& c) { return c.type == b.type; });
+    const auto same =
+        std::find_if(m.cells.begin(), m.cells.end(), [&](const CellBlock& c) { return c.type == b.type; });
     ASSERT_NE(same, m.cells.end());
     EXPECT_EQ(same->nodes, b.nodes) << name_of(b.type);
   }
@@ -83,7 +85,8 @@ TEST(Su2, GmshTrianglesIn2D) {
   const Mesh m = read_mesh(data("gmsh_tri3.su2"));
   EXPECT_EQ(m.dim, 2);
   EXPECT_EQ(m.x.rows(), 2);
-  EXPECT_EQ(test::sorted_groups(m), (std::vector<std::tuple<int, int, std::string>>{{1, 1, "hole_wall"}, {1, 2, "outer"}}));
+  EXPECT_EQ(test::sorted_groups(m),
+            (std::vector<std::tuple<int, int, std::string>>{{1, 1, "hole_wall"}, {1, 2, "outer"}}));
   expect_positive_cells(m, 2.0 - 0.2 * 0.2 * 3.14159265358979, 0.01);  // the hole is a polygon of 7 sides
 }
 

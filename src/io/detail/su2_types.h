@@ -13,7 +13,7 @@ struct Su2Type {
 };
 
 inline constexpr Su2Type k_su2_types[] = {
-    {3, ElementType::Line},         {5, ElementType::Triangle}, {9, ElementType::Quadrilateral},
+    {3, ElementType::Line},         {5, ElementType::Triangle},    {9, ElementType::Quadrilateral},
     {10, ElementType::Tetrahedron}, {12, ElementType::Hexahedron}, {13, ElementType::Prism},
     {14, ElementType::Pyramid},
 };
