@@ -163,6 +163,15 @@ std::int64_t FoamFile::list_start(std::string_view what, bool& uniform) {
   return n;
 }
 
+std::int64_t FoamFile::plain_list_start(std::string_view what, bool whole) {
+  bool uniform = false;
+  const std::size_t at = (skip(), c_.pos());
+  const std::int64_t n = list_start(what, uniform);
+  if (uniform) c_.fail_at(at, "a uniform list of " + std::string(what) + " {…}");
+  if (whole) list_at_ = at;
+  return n;
+}
+
 std::int64_t FoamFile::binary_label() {
   if (label_bytes_ == 8) return c_.raw<std::int64_t>("a label");
   return c_.raw<std::int32_t>("a label");
@@ -209,11 +218,8 @@ std::vector<std::int64_t> FoamFile::labels(std::string_view what) {
 
 std::vector<double> FoamFile::points() {
   if (class_ != "vectorField") c_.fail_at(0, "expected class vectorField, got '" + Cursor::shorten(class_) + "'");
-  bool uniform = false;
-  const std::size_t at = (skip(), c_.pos());
-  const std::int64_t n = list_start("points", uniform);
-  list_at_ = at;
-  if (uniform) c_.fail_at(at, "a uniform list of points");
+  const std::int64_t n = plain_list_start("points");
+  const std::size_t at = list_at_;
   std::vector<double> xyz;
   if (binary_) {
     if (static_cast<std::uint64_t>(n) * 3 * static_cast<std::uint64_t>(scalar_bytes_) > c_.remaining())
@@ -261,18 +267,13 @@ FoamFaces FoamFile::faces(std::int64_t n_points) {
   if (class_ != "faceList")
     c_.fail_at(0, "expected class faceList or faceCompactList, got '" + Cursor::shorten(class_) + "'");
   if (binary_) c_.fail_at(0, "a binary faceList (OpenFOAM writes binary faces as faceCompactList)");
-  bool uniform = false;
-  const std::size_t at = (skip(), c_.pos());
-  const std::int64_t n = list_start("faces", uniform);
-  list_at_ = at;
-  if (uniform) c_.fail_at(at, "a uniform list of faces");
+  const std::int64_t n = plain_list_start("faces");
+  const std::size_t at = list_at_;
   while (peek() != ')') {
     if (c_.pos() >= data_.size()) c_.fail("unexpected end of file, expected ')' closing the faces list");
     const std::size_t face_at = c_.pos();
     const std::size_t before = f.points.size();
-    bool uniform_face = false;
-    const std::int64_t k = list_start("face's point", uniform_face);
-    if (uniform_face) c_.fail_at(face_at, "a uniform face");
+    const std::int64_t k = plain_list_start("face's point", false);
     while (peek() != ')') {
       if (c_.pos() >= data_.size()) c_.fail("unexpected end of file, expected ')' closing a face");
       const std::int64_t p = label("point label");
@@ -297,11 +298,8 @@ std::vector<FoamPatch> FoamFile::patches() {
   if (class_ != "polyBoundaryMesh")
     c_.fail_at(0, "expected class polyBoundaryMesh, got '" + Cursor::shorten(class_) + "'");
   binary_ = false;  // the boundary dictionary is text in binary cases too
-  bool uniform = false;
-  const std::size_t at = (skip(), c_.pos());
-  const std::int64_t n = list_start("patches", uniform);
-  list_at_ = at;
-  if (uniform) c_.fail_at(at, "a uniform list of patches");
+  const std::int64_t n = plain_list_start("patches");
+  const std::size_t at = list_at_;
   std::vector<FoamPatch> out;
   while (peek() != ')') {
     FoamPatch p;

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "io/detail/linear_only.h"
 #include "io/detail/out_buffer.h"
 #include "io/detail/su2_types.h"
 #include "meshmorph/error.h"
@@ -22,11 +23,7 @@ void put_element(detail::OutBuffer& o, const CellBlock& b, std::size_t c) {
 }  // namespace
 
 void write_su2(std::ostream& out, const Mesh& mesh) {
-  for (const auto* list : {&mesh.facets, &mesh.cells})
-    for (const CellBlock& b : *list)
-      if (b.type != ElementType::Point && b.order != 1)
-        throw InputError("SU2 .su2 holds linear cells only; the mesh has " + std::string(name_of(b.type)) +
-                         "s of order " + std::to_string(b.order));
+  detail::require_linear(mesh, "SU2 .su2");
   struct Marker {
     std::string name;
     std::int32_t tag;

@@ -64,6 +64,9 @@ class FoamFile {
   /// Reads `N (` (or `(` without a count, ASCII only); returns N or −1, and whether the list
   /// is `N{value}` (uniform: the cursor is then on the value).
   std::int64_t list_start(std::string_view what, bool& uniform);
+  /// list_start for a list that cannot be uniform; `whole`: the file's list (its start goes
+  /// to list_at), not an item of it.
+  std::int64_t plain_list_start(std::string_view what, bool whole = true);
   /// An entry's value up to its ';' (nested parentheses and quotes kept), trimmed.
   std::string_view value();
   std::int64_t binary_label();
