@@ -178,6 +178,36 @@ TEST(Foam, AFaceTurnedOverIsNamed) {
   }
 }
 
+// Every prefix of every file of a polyMesh, ASCII and binary, is an InputError naming the file
+// and a line or byte offset, or (cut after the list's last ')') the same mesh.
+TEST(Foam, EveryTruncationIsAnInputErrorNamingTheFile) {
+  for (const std::string name : {"channel_hex", "channel_hex_binary"}) {
+    const fs::path dir = scratch_case(name);
+    const Mesh whole = read_mesh(dir);
+    for (const char* file : {"points", "faces", "owner", "neighbour", "boundary"}) {
+      SCOPED_TRACE(name + "/" + file);
+      const fs::path path = dir / "constant" / "polyMesh" / file;
+      const std::string full = bytes(path);
+      const std::size_t stride = std::max<std::size_t>(1, full.size() / 40);
+      int errors = 0;
+      for (std::size_t n = 0; n < full.size(); n += stride) {
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << full.substr(0, n);
+        try {
+          test::expect_meshes_equal(read_mesh(dir), whole);
+          EXPECT_GT(n, full.rfind(')')) << "a prefix of " << n << " bytes was accepted";
+        } catch (const InputError& e) {
+          ++errors;
+          const std::string msg = e.what();
+          EXPECT_TRUE(msg.find(path.string() + ": line ") == 0 || msg.find(path.string() + ": byte offset ") == 0)
+              << n << ": " << msg;
+        }
+      }
+      EXPECT_GT(errors, 25);
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << full;
+    }
+  }
+}
+
 TEST(Foam, AFolderWithoutPolyMeshIsNamed) {
   const fs::path dir = fs::temp_directory_path() / ("meshmorph_foam_empty_" + std::to_string(::getpid()));
   fs::create_directories(dir);
