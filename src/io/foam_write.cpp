@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <charconv>
 #include <string>
 #include <system_error>
+#include <vector>
 
-#include "io/detail/foam_file.h"
 #include "io/detail/out_buffer.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/atomic_file.h"
@@ -22,6 +23,21 @@ fs::path case_of(const fs::path& time_folder) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
+// The cells as sorted lists of their corners, sorted: the same for two meshes whose cells
+// stand on the same nodes, whatever the cells' order and the order of their nodes.
+std::vector<std::vector<std::int32_t>> corner_sets(const Mesh& mesh) {
+  std::vector<std::vector<std::int32_t>> sets;
+  sets.reserve(mesh.n_cells());
+  for (const CellBlock& b : mesh.cells)
+    for (std::size_t c = 0; c < b.n_cells(); ++c) {
+      std::vector<std::int32_t> s(b.cell(c), b.cell(c) + n_corners_of(b.type));
+      std::sort(s.begin(), s.end());
+      sets.push_back(std::move(s));
+    }
+  std::sort(sets.begin(), sets.end());
+  return sets;
+}
+
 }  // namespace
 
 bool is_foam_time_folder(const fs::path& path) {
@@ -37,13 +53,16 @@ void write_foam_points(const fs::path& time_folder, const Mesh& mesh) {
   if (time.empty() || ec != std::errc() || end != time.data() + time.size())
     throw InputError(time_folder.string() + ": an OpenFOAM time folder is named by its time (such as 0.001), not \"" +
                      time + "\"");
-  const fs::path constant_points = case_of(folder) / "constant" / "polyMesh" / "points";
-  detail::FoamFile original(constant_points);
-  const std::size_t n = original.points().size() / 3;
-  if (mesh.dim != 3 || n != mesh.n_nodes())
+  const fs::path constant = case_of(folder) / "constant" / "polyMesh";
+  const Mesh original = read_foam(constant);
+  const std::string only = ": only a mesh read from this case's polyMesh can be written as its points";
+  if (mesh.dim != 3 || original.n_nodes() != mesh.n_nodes())
     throw InputError(time_folder.string() + ": the mesh has " + std::to_string(mesh.n_nodes()) + " nodes (" +
-                     std::to_string(mesh.dim) + "D) where " + constant_points.string() + " holds " + std::to_string(n) +
-                     " points: only a mesh read from this case's polyMesh can be written as its points");
+                     std::to_string(mesh.dim) + "D) where " + constant.string() + " has " +
+                     std::to_string(original.n_nodes()) + " points" + only);
+  if (corner_sets(mesh) != corner_sets(original))
+    throw InputError(time_folder.string() + ": the mesh's cells are not those of " + constant.string() +
+                     " on the same points (another mesh, or its nodes renumbered)" + only);
   std::error_code mk;
   fs::create_directories(folder / "polyMesh", mk);
   if (mk) throw IoError(folder.string() + "/polyMesh: cannot create the folder: " + mk.message());

@@ -32,9 +32,9 @@ bool is_foam_time_folder(const std::filesystem::path& path);
 /// exact doubles, so the coordinates read back bit for bit), creating the folders, atomically
 /// (io/atomic_file.h): OpenFOAM takes the topology of the case's constant/polyMesh with these
 /// points (`checkMesh -time T`, a solver started at time T). The folder's name must be a
-/// number (OpenFOAM's time), and the mesh must have as many nodes as the case's
-/// constant/polyMesh/points (a mesh read from that case by read_foam, whose node order it
-/// keeps): otherwise InputError, before anything is written.
+/// number (OpenFOAM's time), and the mesh must be the case's constant/polyMesh (read by
+/// read_foam, whose node order it keeps), moved: as many nodes, and its cells on the same
+/// nodes. Otherwise InputError, before anything is written.
 void write_foam_points(const std::filesystem::path& time_folder, const Mesh& mesh);
 
 }  // namespace meshmorph
