@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <charconv>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -17,6 +18,13 @@ namespace fs = std::filesystem;
 
 // "case/0.1/" names the folder 0.1 too.
 fs::path without_slash(const fs::path& path) { return path.filename().empty() ? path.parent_path() : path; }
+
+// OpenFOAM names a time folder by the time, a number.
+bool is_time(std::string_view name) {
+  double t = 0;
+  const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), t);
+  return !name.empty() && ec == std::errc() && end == name.data() + name.size();
+}
 
 fs::path case_of(const fs::path& time_folder) {
   const fs::path parent = without_slash(time_folder).parent_path();
@@ -42,15 +50,14 @@ std::vector<std::vector<std::int32_t>> corner_sets(const Mesh& mesh) {
 
 bool is_foam_time_folder(const fs::path& path) {
   std::error_code ec;
-  return fs::is_directory(case_of(path) / "constant" / "polyMesh", ec);
+  return is_time(without_slash(path).filename().string()) &&
+         fs::is_directory(case_of(path) / "constant" / "polyMesh", ec);
 }
 
 void write_foam_points(const fs::path& time_folder, const Mesh& mesh) {
   const fs::path folder = without_slash(time_folder);
   const std::string time = folder.filename().string();
-  double t = 0;
-  const auto [end, ec] = std::from_chars(time.data(), time.data() + time.size(), t);
-  if (time.empty() || ec != std::errc() || end != time.data() + time.size())
+  if (!is_time(time))
     throw InputError(time_folder.string() + ": an OpenFOAM time folder is named by its time (such as 0.001), not \"" +
                      time + "\"");
   const fs::path constant = case_of(folder) / "constant" / "polyMesh";

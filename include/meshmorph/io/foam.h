@@ -24,8 +24,8 @@ namespace meshmorph {
 /// file cannot be read.
 Mesh read_foam(const std::filesystem::path& path);
 
-/// True where `path` names a time folder of an OpenFOAM case: its parent folder holds
-/// constant/polyMesh (the folder itself need not exist yet).
+/// True where `path` names a time folder of an OpenFOAM case: its name is a number (0.001)
+/// and its parent folder holds constant/polyMesh (the folder itself need not exist yet).
 bool is_foam_time_folder(const std::filesystem::path& path);
 
 /// Writes the nodes of `mesh` as `<time_folder>/polyMesh/points` (ASCII vectorField, shortest
