@@ -236,6 +236,11 @@ Mesh read_foam(const fs::path& path) {
   std::int64_t n_cells = 0;
   for (const std::int64_t c : owner) n_cells = std::max(n_cells, c + 1);
   for (const std::int64_t c : neighbour) n_cells = std::max(n_cells, c + 1);
+  // A cell has 4 faces at least, and a face 2 cells at most.
+  if (n_cells > n_faces / 2)
+    owner_file.fail_at(owner_file.list_at(),
+                       "cell " + std::to_string(n_cells - 1) + " (in owner or neighbour) is beyond the " +
+                           std::to_string(n_faces / 2) + " cells that " + std::to_string(n_faces) + " faces can close");
   std::vector<CellFaces> cells(static_cast<std::size_t>(n_cells));
   const auto add = [&](std::int64_t c, std::int64_t f, bool out) {
     CellFaces& cf = cells[static_cast<std::size_t>(c)];

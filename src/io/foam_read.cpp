@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -203,7 +204,7 @@ std::vector<std::int64_t> FoamFile::labels(std::string_view what) {
     c_.binary = false;
     expect(')');
   } else {
-    if (n > 0) out.reserve(static_cast<std::size_t>(n));
+    if (n > 0) out.reserve(std::min(static_cast<std::size_t>(n), c_.remaining() / 2));  // "0 " at least
     while (peek() != ')') {
       if (c_.pos() >= data_.size())
         c_.fail("unexpected end of file, expected ')' closing the " + std::string(what) + " list");
@@ -232,7 +233,7 @@ std::vector<double> FoamFile::points() {
     expect(')');
     return xyz;
   }
-  if (n > 0) xyz.reserve(3 * static_cast<std::size_t>(n));
+  if (n > 0) xyz.reserve(3 * std::min(static_cast<std::size_t>(n), c_.remaining() / 8));  // "(0 0 0) "
   while (peek() != ')') {
     if (c_.pos() >= data_.size()) c_.fail("unexpected end of file, expected ')' closing the points list");
     expect('(');

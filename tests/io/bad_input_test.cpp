@@ -92,6 +92,7 @@ const std::map<std::string, std::string>& expected_reasons() {
       {"su2_unknown_element_type.su2", "line 4: element type 7 is not a cell of a 2D SU2 mesh"},
       {"su2_unknown_keyword.su2", "line 8: unknown SU2 keyword 'NBOX='"},
       {"foam_binary_points_cut", "polyMesh/points: line 20: the binary list of 30 points is cut short"},
+      {"foam_cell_label_too_large", "polyMesh/owner: line 20: cell 99999 (in owner or neighbour) is beyond the 19 cells"},
       {"foam_face_turned_over", "polyMesh: face 1 is oriented against the other faces of cell 0"},
       {"foam_negative_neighbour", "polyMesh/neighbour: line 19: neighbour cell -4 is negative"},
       {"foam_no_header", "polyMesh/points: line 11: expected the FoamFile header, got '30'"},
