@@ -12,7 +12,7 @@ CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS ?= -1
 FUZZ_JOBS ?= 1
-FUZZ_TARGETS ?= msh vtu medit case_file
+FUZZ_TARGETS ?= msh vtu medit su2 case_file
 
 .PHONY: all deps build demo test bench sanitize-test fuzz clean
 

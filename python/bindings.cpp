@@ -230,12 +230,15 @@ PYBIND11_MODULE(_meshmorph, m) {
            [](const Mesh& mesh, const std::filesystem::path& path, bool binary) {
              if (binary && path.extension() == ".mesh")
                throw InputError(path.string() + ": binary is not available for Medit .mesh (ASCII only)");
+             if (binary && path.extension() == ".su2")
+               throw InputError(path.string() + ": binary is not available for SU2 .su2 (ASCII only)");
              WriteOptions o;
              o.binary = binary;
              write_mesh(path, mesh, o);
            },
            py::arg("path"), py::arg("binary") = false,
-           "Writes the mesh atomically; the format comes from the extension (.msh: MSH 4.1, .vtu, .mesh).")
+           "Writes the mesh atomically; the format comes from the extension (.msh: MSH 4.1, .vtu, .mesh, .su2), "
+           "or a time folder of the OpenFOAM case the mesh was read from (case/0.001: its polyMesh/points).")
       .def("copy", [](const Mesh& mesh) { return mesh; }, "An independent copy.")
       .def("__copy__", [](const Mesh& mesh) { return mesh; })
       .def("__deepcopy__", [](const Mesh& mesh, const py::dict&) { return mesh; }, py::arg("memo"));
@@ -243,7 +246,7 @@ PYBIND11_MODULE(_meshmorph, m) {
   m.def("read_mesh", [](const std::filesystem::path& path) {
     py::gil_scoped_release release;
     return read_mesh(path);
-  }, py::arg("path"), "Reads .msh (2.2 or 4.1, ASCII or binary), .vtu or .mesh.");
+  }, py::arg("path"), "Reads .msh (2.2 or 4.1, ASCII or binary), .vtu, .mesh, .su2 or an OpenFOAM case folder.");
   m.def("elevate", [](const Mesh& mesh, int order) {
     int highest = 4;
     for (const CellBlock& b : mesh.cells) highest = std::min(highest, max_order_of(b.type));

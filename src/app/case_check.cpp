@@ -9,6 +9,7 @@
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/orientation.h"
+#include "meshmorph/io/foam.h"
 #include "meshmorph/mesh/topology.h"
 
 namespace meshmorph {
@@ -147,8 +148,12 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
   if (c.trim) check.level_set(*c.trim);
   // Found before the run rather than by the writer after it.
   const int order = std::max(mesh.order(), c.order.value_or(1));
-  if (c.output && c.output->extension() == ".mesh" && order > 1)
-    JsonWhere{c.file.string(), "output"}.fail("Medit .mesh holds linear cells only; the result is of order " +
+  if (c.output && c.output_each_step && is_foam_time_folder(*c.output))
+    JsonWhere{c.file.string(), "output_each_step"}.fail("an OpenFOAM time folder holds one time: morph into one "
+                                                        "time folder a run, or write the steps as .vtu or .msh");
+  if (c.output && (c.output->extension() == ".mesh" || c.output->extension() == ".su2") && order > 1)
+    JsonWhere{c.file.string(), "output"}.fail((c.output->extension() == ".su2" ? "SU2 .su2" : "Medit .mesh") +
+                                              std::string(" holds linear cells only; the result is of order ") +
                                               std::to_string(order) + " (write .msh or .vtu)");
 }
 

@@ -10,6 +10,7 @@
 #include "app/detail/case_parts.h"
 #include "app/detail/json_reader.h"
 #include "meshmorph/error.h"
+#include "meshmorph/io/foam.h"
 #include "meshmorph/io/input_files.h"
 #include "meshmorph/timings.h"
 
@@ -105,8 +106,9 @@ std::filesystem::path output_path(const json& j, const JsonWhere& w, const std::
   const std::filesystem::path p = base / detail::read_string(j, w);
   if (mesh_format) {
     const std::string ext = p.extension().string();
-    if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-      w.fail("expected a .msh, .vtu or .mesh file name, found \"" + p.filename().string() + "\"");
+    if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && !is_foam_time_folder(p))
+      w.fail("expected a .msh, .vtu or .mesh file name (or .su2, or an OpenFOAM case's time folder), found \"" +
+             p.filename().string() + "\"");
   }
   return p;
 }
@@ -142,8 +144,13 @@ CaseFile parse_case_file(const std::string& text, const std::filesystem::path& f
   detail::ObjectReader r(root, JsonWhere{name, ""});
   if (root.is_object())
     for (const auto& item : root.items()) c.keys.push_back(item.key());
-  if (const json* j = mesh_required ? &r.required("mesh") : r.optional("mesh"))
-    c.mesh = detail::existing_file(detail::read_string(*j, r.at("mesh")), base, r.at("mesh"));
+  if (const json* j = mesh_required ? &r.required("mesh") : r.optional("mesh")) {
+    const std::string mesh_name = detail::read_string(*j, r.at("mesh"));
+    const std::filesystem::path folder =
+        std::filesystem::path(mesh_name).is_absolute() ? std::filesystem::path(mesh_name) : base / mesh_name;
+    std::error_code ec;  // a folder is an OpenFOAM case (io/foam.h)
+    c.mesh = std::filesystem::is_directory(folder, ec) ? folder : detail::existing_file(mesh_name, base, r.at("mesh"));
+  }
   if (const json* j = r.optional("order")) {
     const long long order = detail::read_integer(*j, r.at("order"));
     if (order < 1 || order > 4) r.at("order").fail("expected an order from 1 to 4, found " + j->dump());

@@ -7,6 +7,7 @@
 #include "app/detail/method_output.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
+#include "meshmorph/io/foam.h"
 
 namespace meshmorph {
 
@@ -35,10 +36,13 @@ QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh*
 
 WriteOptions convert_options(const std::string& output, bool binary, bool msh22) {
   const std::string ext = std::filesystem::path(output).extension().string();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-    throw InputError(output + ": unknown output format \"" + ext + "\" (expected .msh, .vtu or .mesh)");
+  const bool foam = ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && is_foam_time_folder(output);
+  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && !foam)
+    throw InputError(output + ": unknown output format \"" + ext +
+                     "\" (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case's time folder)");
   if (msh22 && ext != ".msh") throw InputError(output + ": --msh22 needs a .msh output file");
-  if (binary && ext == ".mesh") throw InputError(output + ": --binary is not available for Medit .mesh output");
+  if (binary && (ext == ".mesh" || ext == ".su2" || foam))
+    throw InputError(output + ": --binary is not available for " + (foam ? "OpenFOAM points" : ext) + " output");
   WriteOptions options;
   options.binary = binary;
   if (msh22) options.format = MeshFormat::Msh22;

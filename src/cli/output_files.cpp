@@ -15,6 +15,7 @@
 #include <omp.h>
 
 #include "meshmorph/error.h"
+#include "meshmorph/io/foam.h"
 #include "meshmorph/io/input_files.h"
 #include "meshmorph/io/mesh_io.h"
 #include "meshmorph/log.h"
@@ -33,7 +34,7 @@ void check_outputs(const std::vector<OutputFile>& outputs) {
     const OutputFile& o = outputs[i];
     // Where a later output cannot be written, an earlier one must not be either.
     std::error_code ec;
-    if (std::filesystem::is_directory(o.path, ec))
+    if (std::filesystem::is_directory(o.path, ec) && !is_foam_time_folder(o.path))  // OpenFOAM's points go in a folder
       throw InputError(o.label + ": " + o.path.string() + " is a folder, not a file");
     const std::filesystem::path folder = o.path.parent_path().empty() ? std::filesystem::path(".") : o.path.parent_path();
     if (!std::filesystem::is_directory(folder, ec))

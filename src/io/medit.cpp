@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/detail/cursor.h"
+#include "io/detail/linear_only.h"
 #include "io/detail/mesh_builder.h"
 #include "io/detail/out_buffer.h"
 #include "meshmorph/error.h"
@@ -112,11 +113,7 @@ Mesh parse_medit(std::string_view data, const std::filesystem::path& path) {
 }
 
 void write_medit(std::ostream& out, const Mesh& mesh) {
-  for (const auto* list : {&mesh.facets, &mesh.cells})
-    for (const CellBlock& b : *list)
-      if (b.type != ElementType::Point && b.order != 1)
-        throw InputError("Medit .mesh holds linear cells only; the mesh has " + std::string(name_of(b.type)) +
-                         "s of order " + std::to_string(b.order));
+  detail::require_linear(mesh, "Medit .mesh");
   std::vector<std::int32_t> vertex_ref(mesh.n_nodes(), 0);
   for (const CellBlock& b : mesh.facets)
     if (b.type == ElementType::Point)

@@ -7,11 +7,14 @@
 #include <algorithm>
 #include <cctype>
 #include <string>
+#include <system_error>
 
 #include "meshmorph/error.h"
 #include "meshmorph/io/atomic_file.h"
+#include "meshmorph/io/foam.h"
 #include "meshmorph/io/medit.h"
 #include "meshmorph/io/msh.h"
+#include "meshmorph/io/su2.h"
 #include "meshmorph/io/vtu.h"
 #include "meshmorph/timings.h"
 
@@ -32,7 +35,10 @@ Mesh read_mesh(const std::filesystem::path& path) {
   if (ext == ".msh") return read_msh(path);
   if (ext == ".vtu") return read_vtu(path);
   if (ext == ".mesh") return read_medit(path);
-  throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu or .mesh)");
+  if (ext == ".su2") return read_su2(path);
+  if (std::error_code ec; ext == ".foam" || std::filesystem::is_directory(path, ec)) return read_foam(path);
+  throw InputError(path.string() + ": unknown mesh format '" + ext +
+                   "' (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case folder)");
 }
 
 std::optional<std::string> group_name_problem(std::string_view name) {
@@ -79,8 +85,13 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
     if (ext == ".msh") format = MeshFormat::Msh41;
     else if (ext == ".vtu") format = MeshFormat::Vtu;
     else if (ext == ".mesh") format = MeshFormat::Medit;
-    else throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu or .mesh)");
+    else if (ext == ".su2") format = MeshFormat::Su2;
+    else if (is_foam_time_folder(path)) format = MeshFormat::Foam;
+    else
+      throw InputError(path.string() + ": unknown mesh format '" + ext +
+                       "' (expected .msh, .vtu, .mesh, .su2 or the time folder of an OpenFOAM case)");
   }
+  if (format == MeshFormat::Foam) return write_foam_points(path, mesh);
   write_atomically(path, true, [&](std::ostream& out) {
     try {
       switch (format) {
@@ -88,6 +99,8 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
         case MeshFormat::Msh22: write_msh(out, mesh, 22, options.binary, options.cell_data, options.point_vectors); break;
         case MeshFormat::Vtu: write_vtu(out, mesh, options.binary, options.cell_data, options.point_vectors); break;
         case MeshFormat::Medit: write_medit(out, mesh); break;
+        case MeshFormat::Su2: write_su2(out, mesh); break;
+        case MeshFormat::Foam: break;
       }
     } catch (const InputError& e) {  // what the format cannot hold: name the file it was for
       throw InputError(path.string() + ": " + e.what());

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# check_bad_inputs.sh MESHMORPH DIR WORK: every file of DIR, given to `quality` and to
+# check_bad_inputs.sh MESHMORPH DIR WORK: every file (or OpenFOAM case folder) of DIR, given to `quality` and to
 # `convert`, must give exit code 2, a stderr message naming the file and a line or byte
 # offset, and no output file.
 set -u
@@ -16,7 +16,8 @@ for f in "$dir"/*; do
     "$mm" $cmd >"$work/stdout" 2>"$work/stderr"
     rc=$?
     [ "$rc" -eq 2 ] || fail "meshmorph $cmd: exit $rc, expected 2"
-    grep -Eq "^meshmorph: error: $f(:[0-9]+|: (line|byte offset) [0-9]+)" "$work/stderr" ||
+    # An OpenFOAM case (a folder) may be named by its polyMesh file and line, or a cell or face.
+    grep -Eq "^meshmorph: error: $f(/constant/polyMesh(/[a-z]+)?)?(:[0-9]+|: (line|byte offset|cell|face) [0-9]+)" "$work/stderr" ||
       fail "meshmorph $cmd: stderr does not name the file and a line/offset: $(head -c 300 "$work/stderr")"
     if [ -n "$(ls -A "$work/out")" ]; then
       fail "meshmorph $cmd: wrote $(ls -A "$work/out")"

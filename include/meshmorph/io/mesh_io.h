@@ -11,10 +11,14 @@
 
 namespace meshmorph {
 
-enum class MeshFormat { Msh41, Msh22, Vtu, Medit };
+enum class MeshFormat {
+  Msh41, Msh22, Vtu, Medit,
+  Su2, Foam,  ///< SU2 .su2; OpenFOAM polyMesh (points of a time folder: io/foam.h)
+};
 
 /// How write_mesh writes. `format` defaults to the one implied by the extension
-/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit).
+/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit, .su2 → SU2, the time folder of an OpenFOAM
+/// case → its polyMesh/points, write_foam_points).
 struct WriteOptions {
   std::optional<MeshFormat> format;
   bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
@@ -28,7 +32,8 @@ struct WriteOptions {
 };
 
 /// Reads a mesh; the format comes from the extension (.msh: MSH 2.2 or 4.1, ASCII or
-/// binary, detected from its header; .vtu; .mesh). Nodes are converted to the internal
+/// binary, detected from its header; .vtu; .mesh; .su2; an OpenFOAM case, polyMesh or time
+/// folder, or a .foam file in a case: read_foam). Nodes are converted to the internal
 /// (Gmsh) ordering. Throws InputError naming the file and the line or byte offset for
 /// malformed content, and IoError when the file cannot be read.
 Mesh read_mesh(const std::filesystem::path& path);
