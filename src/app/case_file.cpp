@@ -104,9 +104,8 @@ std::filesystem::path output_path(const json& j, const JsonWhere& w, const std::
                                   bool mesh_format) {
   const std::filesystem::path p = base / detail::read_string(j, w);
   if (mesh_format) {
-    const std::string ext = p.extension().string();
-    if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-      w.fail("expected a .msh, .vtu or .mesh file name, found \"" + p.filename().string() + "\"");
+    if (!known_mesh_format(p))
+      w.fail("expected a .msh, .vtu or .mesh file name (or .cgns, .exo), found \"" + p.filename().string() + "\"");
   }
   return p;
 }

@@ -35,8 +35,8 @@ QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh*
 
 WriteOptions convert_options(const std::string& output, bool binary, bool msh22) {
   const std::string ext = std::filesystem::path(output).extension().string();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-    throw InputError(output + ": unknown output format \"" + ext + "\" (expected .msh, .vtu or .mesh)");
+  if (!known_mesh_format(output))
+    throw InputError(output + ": unknown output format \"" + ext + "\" (expected .msh, .vtu, .mesh, .cgns or .exo)");
   if (msh22 && ext != ".msh") throw InputError(output + ": --msh22 needs a .msh output file");
   if (binary && ext == ".mesh") throw InputError(output + ": --binary is not available for Medit .mesh output");
   WriteOptions options;

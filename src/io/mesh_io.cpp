@@ -10,6 +10,8 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/io/atomic_file.h"
+#include "meshmorph/io/cgns.h"
+#include "meshmorph/io/exodus.h"
 #include "meshmorph/io/medit.h"
 #include "meshmorph/io/msh.h"
 #include "meshmorph/io/vtu.h"
@@ -24,7 +26,14 @@ std::string extension_of(const std::filesystem::path& path) {
   return ext;
 }
 
+bool is_exodus(const std::string& ext) { return ext == ".exo" || ext == ".e" || ext == ".ex2"; }
+
 }  // namespace
+
+bool known_mesh_format(const std::filesystem::path& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".msh" || ext == ".vtu" || ext == ".mesh" || ext == ".cgns" || is_exodus(ext);
+}
 
 Mesh read_mesh(const std::filesystem::path& path) {
   const PhaseTimer timer(Phase::Io);
@@ -32,7 +41,9 @@ Mesh read_mesh(const std::filesystem::path& path) {
   if (ext == ".msh") return read_msh(path);
   if (ext == ".vtu") return read_vtu(path);
   if (ext == ".mesh") return read_medit(path);
-  throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu or .mesh)");
+  if (ext == ".cgns") return read_cgns(path);
+  if (is_exodus(ext)) return read_exodus(path);
+  throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu, .mesh, .cgns or .exo)");
 }
 
 std::optional<std::string> group_name_problem(std::string_view name) {
@@ -79,7 +90,19 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
     if (ext == ".msh") format = MeshFormat::Msh41;
     else if (ext == ".vtu") format = MeshFormat::Vtu;
     else if (ext == ".mesh") format = MeshFormat::Medit;
-    else throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu or .mesh)");
+    else if (ext == ".cgns") format = MeshFormat::Cgns;
+    else if (is_exodus(ext)) format = MeshFormat::Exodus;
+    else throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .msh, .vtu, .mesh, .cgns or .exo)");
+  }
+  if (format == MeshFormat::Cgns || format == MeshFormat::Exodus) {  // libraries that write to a path
+    write_atomically_at(path, [&](const std::filesystem::path& tmp) {
+      try {
+        format == MeshFormat::Cgns ? write_cgns(tmp, mesh, path) : write_exodus(tmp, mesh, path);
+      } catch (const InputError& e) {
+        throw InputError(path.string() + ": " + e.what());
+      }
+    });
+    return;
   }
   write_atomically(path, true, [&](std::ostream& out) {
     try {
@@ -88,6 +111,7 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
         case MeshFormat::Msh22: write_msh(out, mesh, 22, options.binary); break;
         case MeshFormat::Vtu: write_vtu(out, mesh, options.binary, options.cell_data); break;
         case MeshFormat::Medit: write_medit(out, mesh); break;
+        default: break;
       }
     } catch (const InputError& e) {  // what the format cannot hold: name the file it was for
       throw InputError(path.string() + ": " + e.what());

@@ -11,10 +11,10 @@
 
 namespace meshmorph {
 
-enum class MeshFormat { Msh41, Msh22, Vtu, Medit };
+enum class MeshFormat { Msh41, Msh22, Vtu, Medit, Cgns, Exodus };
 
 /// How write_mesh writes. `format` defaults to the one implied by the extension
-/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit).
+/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit, .cgns → CGNS, .exo/.e/.ex2 → Exodus II).
 struct WriteOptions {
   std::optional<MeshFormat> format;
   bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
@@ -24,10 +24,13 @@ struct WriteOptions {
 };
 
 /// Reads a mesh; the format comes from the extension (.msh: MSH 2.2 or 4.1, ASCII or
-/// binary, detected from its header; .vtu; .mesh). Nodes are converted to the internal
+/// binary, detected from its header; .vtu; .mesh; .cgns; .exo, .e, .ex2). Nodes are converted to the internal
 /// (Gmsh) ordering. Throws InputError naming the file and the line or byte offset for
 /// malformed content, and IoError when the file cannot be read.
 Mesh read_mesh(const std::filesystem::path& path);
+
+/// Whether read_mesh and write_mesh know the format of `path`'s extension (any case).
+bool known_mesh_format(const std::filesystem::path& path);
 
 /// Why a physical-group name cannot be stored in every format, or none: MSH keeps names in
 /// quotes on one line and XML holds no control byte, so a name must be valid UTF-8 without
