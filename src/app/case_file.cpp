@@ -11,6 +11,7 @@
 #include "app/detail/json_reader.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/input_files.h"
+#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/timings.h"
 
 namespace meshmorph {

@@ -7,6 +7,7 @@
 #include "app/detail/method_output.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 
