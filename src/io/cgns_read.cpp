@@ -104,7 +104,12 @@ void read_section(const CgnsFile& f, CgnsZone& z, int index, detail::MeshBuilder
   f.check(cg_ElementDataSize(f.fn(), z.base, z.zone, index, &size), "node " + z.path + "/" + s.name);
   const cgsize_t count = s.end - s.start + 1;
   std::vector<cgsize_t> data(static_cast<std::size_t>(size));
-  f.check(cg_elements_read(f.fn(), z.base, z.zone, index, data.data(), nullptr), "node " + z.path + "/" + s.name);
+  if (type == MIXED) {  // (each element its type, then its nodes; this library wants the offsets read too)
+    std::vector<cgsize_t> offsets(static_cast<std::size_t>(count) + 1);
+    f.check(cg_poly_elements_read(f.fn(), z.base, z.zone, index, data.data(), offsets.data(), nullptr), "node " + z.path + "/" + s.name);
+  } else {
+    f.check(cg_elements_read(f.fn(), z.base, z.zone, index, data.data(), nullptr), "node " + z.path + "/" + s.name);
+  }
   std::size_t at = 0;
   for (cgsize_t e = 0; e < count; ++e) {
     int t = type, npe = 0;
