@@ -150,6 +150,10 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
   if (c.output && c.output->extension() == ".mesh" && order > 1)
     JsonWhere{c.file.string(), "output"}.fail("Medit .mesh holds linear cells only; the result is of order " +
                                               std::to_string(order) + " (write .msh or .vtu)");
+  const std::string ext = c.output ? c.output->extension().string() : "";
+  if ((ext == ".exo" || ext == ".e" || ext == ".ex2") && order > 2)
+    JsonWhere{c.file.string(), "output"}.fail("Exodus II holds cells of orders 1 and 2; the result is of order " +
+                                              std::to_string(order) + " (write .cgns, .msh or .vtu)");
 }
 
 std::size_t orient_cells(const CaseFile& c, Mesh& mesh) {
