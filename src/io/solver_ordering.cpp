@@ -81,39 +81,27 @@ Points tetrahedron(int p) {
   return out;
 }
 
-// Hexahedra and prisms: the base's corners, the top's, base edges, rising edges, top edges,
-// base face, side faces, top face, then the inside level by level up the rising edges.
-Points hexahedron(int p) {
-  Points v;
-  for (const double z : {-1.0, 1.0})
-    for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) v.emplace_back(x, y, z);
-  Points out = v, rise[4];
-  for (int i = 0; i < 4; ++i) edge(out, v[i], v[(i + 1) % 4], p);
-  for (int i = 0; i < 4; ++i) {
-    edge(rise[i], v[i], v[i + 4], p);
+// Hexahedra and prisms, the base (a quadrilateral or a triangle) raised from z = −1 to 1: the
+// base's corners, the top's, base edges, rising edges, top edges, base face, side faces, top
+// face, then the inside level by level up the rising edges.
+Points extruded(const Points& base, int p) {
+  const std::size_t n = base.size();
+  Points v = base, rise[4];
+  for (const V& b : base) v.emplace_back(b(0), b(1), 1.0);
+  const auto inside = [&](Points& out, const V& a, const V& b, const V& c, const V& d) {
+    n == 4 ? quad_inside(out, a, b, c, d, p) : triangle_inside(out, a, b, c, p);
+  };
+  Points out = v;
+  for (std::size_t i = 0; i < n; ++i) edge(out, v[i], v[(i + 1) % n], p);
+  for (std::size_t i = 0; i < n; ++i) {
+    edge(rise[i], v[i], v[i + n], p);
     out.insert(out.end(), rise[i].begin(), rise[i].end());
   }
-  for (int i = 0; i < 4; ++i) edge(out, v[i + 4], v[(i + 1) % 4 + 4], p);
-  quad_inside(out, v[0], v[1], v[2], v[3], p);
-  for (int i = 0; i < 4; ++i) quad_inside(out, v[i], v[(i + 1) % 4], v[(i + 1) % 4 + 4], v[i + 4], p);
-  quad_inside(out, v[4], v[5], v[6], v[7], p);
-  for (int k = 0; k < p - 1; ++k) quad_inside(out, rise[0][k], rise[1][k], rise[2][k], rise[3][k], p);
-  return out;
-}
-
-Points prism(int p) {
-  Points v{V(0, 0, -1), V(1, 0, -1), V(0, 1, -1), V(0, 0, 1), V(1, 0, 1), V(0, 1, 1)};
-  Points out = v, rise[3];
-  for (int i = 0; i < 3; ++i) edge(out, v[i], v[(i + 1) % 3], p);
-  for (int i = 0; i < 3; ++i) {
-    edge(rise[i], v[i], v[i + 3], p);
-    out.insert(out.end(), rise[i].begin(), rise[i].end());
-  }
-  for (int i = 0; i < 3; ++i) edge(out, v[i + 3], v[(i + 1) % 3 + 3], p);
-  triangle_inside(out, v[0], v[1], v[2], p);
-  for (int i = 0; i < 3; ++i) quad_inside(out, v[i], v[(i + 1) % 3], v[(i + 1) % 3 + 3], v[i + 3], p);
-  triangle_inside(out, v[3], v[4], v[5], p);
-  for (int k = 0; k < p - 1; ++k) triangle_inside(out, rise[0][k], rise[1][k], rise[2][k], p);
+  for (std::size_t i = 0; i < n; ++i) edge(out, v[i + n], v[(i + 1) % n + n], p);
+  inside(out, v[0], v[1], v[2], v[3 % n]);
+  for (std::size_t i = 0; i < n; ++i) quad_inside(out, v[i], v[(i + 1) % n], v[(i + 1) % n + n], v[i + n], p);
+  inside(out, v[n], v[n + 1], v[n + 2], v[n + 3 % n]);
+  for (int k = 0; k < p - 1; ++k) inside(out, rise[0][k], rise[1][k], rise[2][k], rise[3 % n][k]);
   return out;
 }
 
@@ -143,8 +131,8 @@ Points cgns_points(ElementType type, int p) {
       return out;
     }
     case ElementType::Tetrahedron: return tetrahedron(p);
-    case ElementType::Hexahedron: return hexahedron(p);
-    case ElementType::Prism: return prism(p);
+    case ElementType::Hexahedron: return extruded({V(-1, -1, -1), V(1, -1, -1), V(1, 1, -1), V(-1, 1, -1)}, p);
+    case ElementType::Prism: return extruded({V(0, 0, -1), V(1, 0, -1), V(0, 1, -1)}, p);
     case ElementType::Pyramid: return pyramid(p);
   }
   return {};
