@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/io/solver_ordering.h"
 
+#include <algorithm>
 #include <numeric>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "meshmorph/fem/reference_element.h"
+#include "meshmorph/fem/validity.h"
 
 namespace meshmorph {
 namespace {
@@ -44,6 +46,32 @@ TEST(SolverOrdering, CgnsPointsLandOnTheReferenceNodes) {
     EXPECT_EQ(sorted, iota);
     // Corners come first, in the same order in both conventions.
     for (int c = 0; c < n_corners_of(type); ++c) EXPECT_EQ(perm[static_cast<std::size_t>(c)], c);
+  }
+}
+
+// A cell given in CGNS's (or Exodus's) node order at an affine image A x + b of CGNS's reference
+// points, read through the permutation, has the Jacobian A everywhere: min det = det A > 0.
+TEST(SolverOrdering, ReferenceCellsReadInHaveTheJacobianOfTheirMap) {
+  for (const auto& [type, order] : all_types()) {
+    if (topological_dim(type) < 2) continue;
+    SCOPED_TRACE(std::string(name_of(type)) + std::to_string(order));
+    const int d = topological_dim(type);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Identity(d, d) * 2.0;
+    A(0, 1) = 0.3;
+    A(d - 1, 0) = -0.2;
+    const Eigen::MatrixXd cgns = (A * cgns_reference_points(type, order)).colwise() + Eigen::VectorXd::Constant(d, 0.5);
+    for (const bool exodus : {false, true}) {
+      if (exodus && order > 2) continue;
+      const std::vector<int>& perm = exodus ? exodus_to_gmsh_permutation(type, order) : cgns_to_gmsh_permutation(type, order);
+      // The file's points: Exodus node i is the CGNS node that lands on the same Gmsh node.
+      const std::vector<int>& cp = cgns_to_gmsh_permutation(type, order);
+      Eigen::MatrixXd in_file(d, cgns.cols());
+      for (std::size_t i = 0; i < perm.size(); ++i)
+        in_file.col(static_cast<Eigen::Index>(i)) = cgns.col(std::find(cp.begin(), cp.end(), perm[i]) - cp.begin());
+      Eigen::MatrixXd gmsh(d, static_cast<Eigen::Index>(perm.size()));
+      for (std::size_t i = 0; i < perm.size(); ++i) gmsh.col(perm[i]) = in_file.col(static_cast<Eigen::Index>(i));
+      EXPECT_NEAR(min_jacobian_det(type, order, gmsh), A.determinant(), 1e-9) << (exodus ? "Exodus" : "CGNS");
+    }
   }
 }
 
