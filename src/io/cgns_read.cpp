@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/detail/cgns_reader.h"
+#include "io/detail/library_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/cgns.h"
 #include "meshmorph/io/solver_ordering.h"
@@ -160,6 +161,7 @@ const detail::CgnsElement* detail::CgnsZone::find(cgsize_t n) const {
 }
 
 Mesh read_cgns(const std::filesystem::path& path) {
+  const std::lock_guard lock(detail::library_mutex());
   const CgnsFile f(path, false, path.string());
   int nbases = 0;
   f.check(cg_nbases(f.fn(), &nbases), "node /");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/detail/cgns_file.h"
+#include "io/detail/library_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/cgns.h"
 #include "meshmorph/io/solver_ordering.h"
@@ -50,6 +51,7 @@ std::map<std::pair<int, std::int32_t>, std::string> families(const std::vector<P
 }  // namespace
 
 void write_cgns(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown) {
+  const std::lock_guard lock(detail::library_mutex());
   const std::vector<PhysicalGroup> groups = all_groups(mesh);
   const auto family = families(groups);
   // A section per block, cells then facets, so that elements keep their order; points are

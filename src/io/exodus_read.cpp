@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/detail/exodus_file.h"
+#include "io/detail/library_file.h"
 #include "io/detail/mesh_builder.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/reference_element.h"
@@ -65,6 +66,7 @@ void add_group(detail::MeshBuilder& b, std::set<std::pair<int, std::int32_t>>& n
 }  // namespace
 
 Mesh read_exodus(const std::filesystem::path& path) {
+  const std::lock_guard lock(detail::library_mutex());
   const ExodusFile f(path, false, path.string());
   char title[MAX_LINE_LENGTH + 1] = {};
   int dim = 0, n_nodes = 0, n_elements = 0, n_blocks = 0, n_node_sets = 0, n_side_sets = 0;

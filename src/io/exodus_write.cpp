@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/detail/exodus_file.h"
+#include "io/detail/library_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/exodus.h"
 #include "meshmorph/io/solver_ordering.h"
@@ -50,6 +51,7 @@ void put_names(const detail::ExodusFile& f, ex_entity_type type, const std::vect
 }  // namespace
 
 void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown) {
+  const std::lock_guard lock(detail::library_mutex());
   std::map<std::pair<int, std::int32_t>, std::string> group_name;
   for (const PhysicalGroup& g : mesh.groups) group_name[{g.dim, g.tag}] = checked_name(g.name);
   const auto name_of_group = [&](int dim, std::int32_t tag) {

@@ -16,4 +16,9 @@ void check_library_input(const std::filesystem::path& path) {
   note_input_file(path);
 }
 
+std::mutex& library_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 }  // namespace meshmorph::detail
