@@ -119,7 +119,8 @@ void read_section(const CgnsFile& f, CgnsZone& z, int index, detail::MeshBuilder
       t = static_cast<int>(data[at++]);
     }
     if (t < NODE || t >= NofValidElementTypes || t == MIXED || cg_npe(static_cast<ElementType_t>(t), &npe) != CG_OK || npe <= 0)
-      throw InputError(where + ": element " + std::to_string(s.start + e) + ": unsupported CGNS element type " + std::to_string(t));
+      throw InputError(where + ": element " + std::to_string(s.start + e) + ": unsupported CGNS element type " +
+                       (t >= 0 && t < NofValidElementTypes ? std::string(cg_ElementTypeName(static_cast<ElementType_t>(t))) : std::to_string(t)));
     if (at + static_cast<std::size_t>(npe) > data.size())
       throw InputError(where + ": the connectivity ends inside element " + std::to_string(s.start + e));
     add_element(where, s.start + e, t, data.data() + at, z, s, b);
