@@ -155,6 +155,10 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
     JsonWhere{c.file.string(), "output"}.fail((c.output->extension() == ".su2" ? "SU2 .su2" : "Medit .mesh") +
                                               std::string(" holds linear cells only; the result is of order ") +
                                               std::to_string(order) + " (write .msh or .vtu)");
+  const std::string ext = c.output ? c.output->extension().string() : "";
+  if ((ext == ".exo" || ext == ".e" || ext == ".ex2") && order > 2)
+    JsonWhere{c.file.string(), "output"}.fail("Exodus II holds cells of orders 1 and 2; the result is of order " +
+                                              std::to_string(order) + " (write .cgns, .msh or .vtu)");
 }
 
 std::size_t orient_cells(const CaseFile& c, Mesh& mesh) {

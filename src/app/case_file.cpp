@@ -12,6 +12,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/io/foam.h"
 #include "meshmorph/io/input_files.h"
+#include "meshmorph/io/mesh_io.h"
 #include "meshmorph/timings.h"
 
 namespace meshmorph {
@@ -105,9 +106,8 @@ std::filesystem::path output_path(const json& j, const JsonWhere& w, const std::
                                   bool mesh_format) {
   const std::filesystem::path p = base / detail::read_string(j, w);
   if (mesh_format) {
-    const std::string ext = p.extension().string();
-    if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && !is_foam_time_folder(p))
-      w.fail("expected a .msh, .vtu or .mesh file name (or .su2, or an OpenFOAM case's time folder), found \"" +
+    if (!known_mesh_format(p) && !is_foam_time_folder(p))
+      w.fail("expected a .msh, .vtu or .mesh file name (or .su2, .cgns, .exo, or an OpenFOAM case's time folder), found \"" +
              p.filename().string() + "\"");
   }
   return p;

@@ -8,6 +8,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 #include "meshmorph/io/foam.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph {
 
@@ -36,10 +37,10 @@ QualityOutput run_quality(const Mesh& mesh, const std::string& name, const Mesh*
 
 WriteOptions convert_options(const std::string& output, bool binary, bool msh22) {
   const std::string ext = std::filesystem::path(output).extension().string();
-  const bool foam = ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && is_foam_time_folder(output);
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".su2" && !foam)
+  const bool foam = !known_mesh_format(output) && is_foam_time_folder(output);
+  if (!known_mesh_format(output) && !foam)
     throw InputError(output + ": unknown output format \"" + ext +
-                     "\" (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case's time folder)");
+                     "\" (expected .msh, .vtu, .mesh, .su2, .cgns, .exo or an OpenFOAM case's time folder)");
   if (msh22 && ext != ".msh") throw InputError(output + ": --msh22 needs a .msh output file");
   if (binary && (ext == ".mesh" || ext == ".su2" || foam))
     throw InputError(output + ": --binary is not available for " + (foam ? "OpenFOAM points" : ext) + " output");

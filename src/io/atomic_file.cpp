@@ -103,16 +103,20 @@ void remove_temporaries_on_signals() {
 
 void write_atomically(const std::filesystem::path& path, bool binary,
                       const std::function<void(std::ostream&)>& write) {
+  write_atomically_at(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
+    if (!out) throw IoError(path.string() + ": cannot open " + tmp.string() + " for writing");
+    write(out);
+    out.flush();
+    if (!out) throw IoError(path.string() + ": write error (disk full?)");
+  });
+}
+
+void write_atomically_at(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
   const std::filesystem::path tmp = make_temporary(path);
   Slot* slot = hold(tmp.string());
   try {
-    {
-      std::ofstream out(tmp, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
-      if (!out) throw IoError(path.string() + ": cannot open " + tmp.string() + " for writing");
-      write(out);
-      out.flush();
-      if (!out) throw IoError(path.string() + ": write error (disk full?)");
-    }
+    write(tmp);
     sync_file(tmp);
     // mkstemp creates the file with mode 0600; give it the usual permissions (umask applies).
     const mode_t mask = ::umask(0);

@@ -11,6 +11,8 @@
 
 #include "meshmorph/error.h"
 #include "meshmorph/io/atomic_file.h"
+#include "meshmorph/io/cgns.h"
+#include "meshmorph/io/exodus.h"
 #include "meshmorph/io/foam.h"
 #include "meshmorph/io/medit.h"
 #include "meshmorph/io/msh.h"
@@ -27,7 +29,14 @@ std::string extension_of(const std::filesystem::path& path) {
   return ext;
 }
 
+bool is_exodus(const std::string& ext) { return ext == ".exo" || ext == ".e" || ext == ".ex2"; }
+
 }  // namespace
+
+bool known_mesh_format(const std::filesystem::path& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".msh" || ext == ".vtu" || ext == ".mesh" || ext == ".su2" || ext == ".cgns" || is_exodus(ext);
+}
 
 Mesh read_mesh(const std::filesystem::path& path) {
   const PhaseTimer timer(Phase::Io);
@@ -36,9 +45,11 @@ Mesh read_mesh(const std::filesystem::path& path) {
   if (ext == ".vtu") return read_vtu(path);
   if (ext == ".mesh") return read_medit(path);
   if (ext == ".su2") return read_su2(path);
+  if (ext == ".cgns") return read_cgns(path);
+  if (is_exodus(ext)) return read_exodus(path);
   if (std::error_code ec; ext == ".foam" || std::filesystem::is_directory(path, ec)) return read_foam(path);
   throw InputError(path.string() + ": unknown mesh format '" + ext +
-                   "' (expected .msh, .vtu, .mesh, .su2 or an OpenFOAM case folder)");
+                   "' (expected .msh, .vtu, .mesh, .su2, .cgns, .exo or an OpenFOAM case folder)");
 }
 
 std::optional<std::string> group_name_problem(std::string_view name) {
@@ -86,10 +97,22 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
     else if (ext == ".vtu") format = MeshFormat::Vtu;
     else if (ext == ".mesh") format = MeshFormat::Medit;
     else if (ext == ".su2") format = MeshFormat::Su2;
+    else if (ext == ".cgns") format = MeshFormat::Cgns;
+    else if (is_exodus(ext)) format = MeshFormat::Exodus;
     else if (is_foam_time_folder(path)) format = MeshFormat::Foam;
     else
       throw InputError(path.string() + ": unknown mesh format '" + ext +
-                       "' (expected .msh, .vtu, .mesh, .su2 or the time folder of an OpenFOAM case)");
+                       "' (expected .msh, .vtu, .mesh, .su2, .cgns, .exo or the time folder of an OpenFOAM case)");
+  }
+  if (format == MeshFormat::Cgns || format == MeshFormat::Exodus) {  // libraries that write to a path
+    write_atomically_at(path, [&](const std::filesystem::path& tmp) {
+      try {
+        format == MeshFormat::Cgns ? write_cgns(tmp, mesh, path) : write_exodus(tmp, mesh, path);
+      } catch (const InputError& e) {
+        throw InputError(path.string() + ": " + e.what());
+      }
+    });
+    return;
   }
   if (format == MeshFormat::Foam) return write_foam_points(path, mesh);
   write_atomically(path, true, [&](std::ostream& out) {
@@ -100,7 +123,7 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
         case MeshFormat::Vtu: write_vtu(out, mesh, options.binary, options.cell_data, options.point_vectors); break;
         case MeshFormat::Medit: write_medit(out, mesh); break;
         case MeshFormat::Su2: write_su2(out, mesh); break;
-        case MeshFormat::Foam: break;
+        default: break;  // Foam, Cgns and Exodus: above
       }
     } catch (const InputError& e) {  // what the format cannot hold: name the file it was for
       throw InputError(path.string() + ": " + e.what());

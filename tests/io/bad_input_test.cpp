@@ -26,6 +26,23 @@ namespace fs = std::filesystem;
 // What each message must say (a fragment), so that a file fails for the intended reason.
 const std::map<std::string, std::string>& expected_reasons() {
   static const std::map<std::string, std::string> m{
+      {"cgns_bc_element_in_no_section.cgns", "node /Base/Zone/ZoneBC/wall: element 99 is in no element section"},
+      {"cgns_degenerate_element.cgns", "node /Base/Zone/Hexa: element 1 lists node 6 twice (a degenerate element)"},
+      {"cgns_nan_coordinate.cgns", "node /Base/Zone/GridCoordinates/CoordinateY: node 6 has a non-finite coordinate"},
+      {"cgns_node_out_of_range.cgns", "node /Base/Zone/Hexa: element 1 references node 9, outside 1..8"},
+      {"cgns_nonconforming_zones.cgns", "node /Base: the zones do not conform"},
+      {"cgns_not_cgns.cgns", "node /: not a CGNS file"},
+      {"cgns_serendipity_quad8.cgns", "node /Base/Zone/Serendipity: element 2: unsupported CGNS element type QUAD_8"},
+      {"cgns_structured_zone.cgns", "node /Base/Block: structured zones are not supported"},
+      {"cgns_two_bases.cgns", "node /: holds 2 bases"},
+      {"exodus_degenerate_element.exo", "element block 1: element 1 lists node 2 twice (a degenerate element)"},
+      {"exodus_nan_coordinate.exo", "coordinates: node 4 has a non-finite coordinate"},
+      {"exodus_node_out_of_range.exo", "element block 1: element 1 references node 40, outside 1..8"},
+      {"exodus_not_netcdf.exo", "header: not an Exodus II (netCDF) file"},
+      {"exodus_serendipity_hex20.exo", "element block 1: unsupported element type 'HEX20' with 20 nodes"},
+      {"exodus_shell_element.exo", "element block 1: unsupported element type 'SHELL4' with 4 nodes"},
+      {"exodus_side_out_of_range.exo", "side set 1: entry 1: side 7 of element 1 (a hexahedron) is not among its 6 sides"},
+      {"exodus_side_set_element_out_of_range.exo", "side set 1: entry 1 names element 2, outside 1..1"},
       {"medit_bad_coordinate.mesh", "line 7: expected coordinate (a number), got '1e999'"},
       {"medit_bad_dimension.mesh", "line 2: Dimension must be 2 or 3"},
       {"medit_curved_triangles.mesh", "line 9: curved Medit elements"},
@@ -139,13 +156,17 @@ TEST(BadInput, EveryFileGivesInputErrorNamingFileAndPosition) {
     } catch (const InputError& e) {
       const std::string msg = e.what();
       EXPECT_NE(msg.find(name), std::string::npos) << msg;
-      // An OpenFOAM case (a folder) is named with its file and line, or its polyMesh folder and a cell or face.
+      // An OpenFOAM case (a folder) is named with its file and line, or its polyMesh folder and
+      // a cell or face; CGNS and Exodus II files, read through their libraries, with a CGNS node
+      // path, or an Exodus block, set, the coordinates or the header.
       const bool case_position =
           entry.is_directory() &&
           std::regex_search(msg, std::regex(name + "/constant/polyMesh(/[a-z]+: line|: cell|: face) [0-9]+"));
-      EXPECT_TRUE(msg.find(name + ": line ") != std::string::npos || msg.find(name + ": byte offset ") != std::string::npos ||
-                  case_position)
-          << msg;
+      bool at = msg.find(name + ": line ") != std::string::npos || msg.find(name + ": byte offset ") != std::string::npos ||
+                msg.find(name + ": node /") != std::string::npos || case_position;
+      for (const char* where : {": element block ", ": side set ", ": node set ", ": coordinates: ", ": header: "})
+        at = at || msg.find(name + where) != std::string::npos;
+      EXPECT_TRUE(at) << msg;
       const auto it = expected_reasons().find(name);
       ASSERT_NE(it, expected_reasons().end()) << "add the expected reason of " << name << ": " << msg;
       EXPECT_NE(msg.find(it->second), std::string::npos) << msg;

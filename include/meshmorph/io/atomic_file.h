@@ -14,6 +14,10 @@ namespace meshmorph {
 void write_atomically(const std::filesystem::path& path, bool binary,
                       const std::function<void(std::ostream&)>& write);
 
+/// write_atomically for writers that open a file by name (the CGNS and Exodus II
+/// libraries): `write` creates or overwrites the temporary file whose path it is given.
+void write_atomically_at(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+
 /// Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporaries of the writes
 /// in progress, then end the process as the signal would (the command line's; a library
 /// caller such as Python keeps its own handlers).

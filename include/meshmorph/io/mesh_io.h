@@ -14,11 +14,12 @@ namespace meshmorph {
 enum class MeshFormat {
   Msh41, Msh22, Vtu, Medit,
   Su2, Foam,  ///< SU2 .su2; OpenFOAM polyMesh (points of a time folder: io/foam.h)
+  Cgns, Exodus,
 };
 
 /// How write_mesh writes. `format` defaults to the one implied by the extension
-/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit, .su2 → SU2, the time folder of an OpenFOAM
-/// case → its polyMesh/points, write_foam_points).
+/// (.msh → MSH 4.1, .vtu → VTU, .mesh → Medit, .su2 → SU2, .cgns → CGNS, .exo/.e/.ex2 →
+/// Exodus II, the time folder of an OpenFOAM case → its polyMesh/points, write_foam_points).
 struct WriteOptions {
   std::optional<MeshFormat> format;
   bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
@@ -32,11 +33,14 @@ struct WriteOptions {
 };
 
 /// Reads a mesh; the format comes from the extension (.msh: MSH 2.2 or 4.1, ASCII or
-/// binary, detected from its header; .vtu; .mesh; .su2; an OpenFOAM case, polyMesh or time
-/// folder, or a .foam file in a case: read_foam). Nodes are converted to the internal
+/// binary, detected from its header; .vtu; .mesh; .su2; .cgns; .exo, .e, .ex2; an OpenFOAM
+/// case, polyMesh or time folder, or a .foam file in a case: read_foam). Nodes are converted to the internal
 /// (Gmsh) ordering. Throws InputError naming the file and the line or byte offset for
 /// malformed content, and IoError when the file cannot be read.
 Mesh read_mesh(const std::filesystem::path& path);
+
+/// Whether read_mesh and write_mesh know the format of `path`'s extension (any case).
+bool known_mesh_format(const std::filesystem::path& path);
 
 /// Why a physical-group name cannot be stored in every format, or none: MSH keeps names in
 /// quotes on one line and XML holds no control byte, so a name must be valid UTF-8 without
