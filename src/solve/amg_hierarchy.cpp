@@ -80,7 +80,9 @@ void AmgHierarchy::build_given_level(std::vector<double>& weights) {
   L.P = first_;
   L.R = transpose(L.P, threads);
   Level next;
-  coarse_operator(L, next, threads);
+  L.AP = multiply(L.A, L.P, L.row_block, threads);
+  L.product_block = product_block(L);
+  next.own = multiply(L.R, L.AP, L.product_block, threads);
   const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
   next.block = b;
   levels_.push_back(std::move(next));
@@ -100,26 +102,16 @@ bool AmgHierarchy::refresh(const SparseView& A) {
   const int threads = std::max(1, options_.threads);
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     Level& L = levels_[l];
-    if (L.product_block > 1) {
-      galerkin_values(L.R, L.A, L.P, L.ap_nodes, levels_[l + 1].own, L.product_block, threads);
-    } else {
-      multiply_values(L.A, L.P, L.AP, 1, threads);
-      multiply_values(L.R, L.AP, levels_[l + 1].own, 1, threads);
-    }
+    multiply_values(L.A, L.P, L.AP, L.product_block, threads);
+    multiply_values(L.R, L.AP, levels_[l + 1].own, L.product_block, threads);
     if (!prepare_level(levels_[l + 1])) return false;
   }
   return coarse_.factorize(levels_.back().A);
 }
 
-void AmgHierarchy::coarse_operator(Level& L, Level& next, int threads) {
+int AmgHierarchy::product_block(const Level& L) {
   const int b = L.block;
-  L.product_block = (b == 2 || b == 3) && L.row_block == b && has_block_rows(L.P, b) && has_block_rows(L.R, b) ? b : 1;
-  if (L.product_block > 1) {
-    next.own = galerkin(L.R, L.A, L.P, b, L.ap_nodes, threads);
-    return;
-  }
-  L.AP = multiply(L.A, L.P, 1, threads);
-  next.own = multiply(L.R, L.AP, 1, threads);
+  return L.row_block == b && has_block_rows(L.P, b) && has_block_rows(L.R, b) && has_block_rows(L.AP, b) ? b : 1;
 }
 
 bool AmgHierarchy::prepare_level(Level& L) {
@@ -186,8 +178,10 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
     }
   }
   L.R = transpose(L.P, threads);
+  L.AP = multiply(A, L.P, L.row_block, threads);
+  L.product_block = product_block(L);
   Level next;
-  coarse_operator(L, next, threads);
+  next.own = multiply(L.R, L.AP, L.product_block, threads);
   next.block = b;
   levels_.push_back(std::move(next));
   levels_.back().A = levels_.back().own.view();

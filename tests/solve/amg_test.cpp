@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #include "solve/detail/amg.h"
-#include "solve/detail/amg_galerkin.h"
 
 #include <random>
 #include <set>
@@ -161,36 +160,6 @@ detail::Csr random_block_prolongator(int rows, int coarse_nodes, int dim, unsign
 // the scalar route and (all three matrices of whole blocks) the block route; fresh products
 // by the block route as by the scalar one; the block products of prolongators as the scalar
 // ones.
-// The Galerkin operator without A P stored: the same pattern and, for the values of a new A
-// of the same pattern, bit for bit the values of the two products, for any chunk of rows
-// (fine rows shared by chunks are formed twice) and thread count.
-TEST(AmgCsr, GalerkinProductEqualsTheTwoProducts) {
-  for (int dim : {2, 3}) {
-    SCOPED_TRACE(dim);
-    Eigen::SparseMatrix<double> A = test::stiffness_matrix(dim, 5, true);
-    A.makeCompressed();
-    const detail::SparseView view = detail::view_of(A);
-    const detail::Csr P = random_block_prolongator(static_cast<int>(A.rows()), 7, dim, 5);
-    const detail::Csr R = detail::transpose(P, 2);
-    detail::NodePattern ap;
-    detail::Csr C = detail::galerkin(R, view, P, dim, ap, 2);
-    const detail::Csr two = detail::multiply(R, detail::multiply(view, P, dim, 2), dim, 2);
-    ASSERT_EQ(C.ptr, two.ptr);
-    ASSERT_EQ(C.idx, two.idx);
-    EXPECT_EQ(C.val, two.val);
-    Eigen::SparseMatrix<double> B = A;
-    for (Eigen::Index k = 0; k < B.nonZeros(); ++k) B.valuePtr()[k] *= 1.0 + 0.3 * std::cos(static_cast<double>(k));
-    const detail::SparseView view_b = detail::view_of(B);
-    const detail::Csr fresh = detail::multiply(R, detail::multiply(view_b, P, dim, 2), dim, 2);
-    for (const auto& [threads, chunk] : {std::pair{1, 512}, std::pair{2, 1}, std::pair{2, 3}}) {
-      SCOPED_TRACE(chunk);
-      std::fill(C.val.begin(), C.val.end(), 0.0);
-      detail::galerkin_values(R, view_b, P, ap, C, dim, threads, chunk);
-      EXPECT_EQ(C.val, fresh.val);
-    }
-  }
-}
-
 TEST(AmgCsr, ProductValuesOfKnownPatternsMatchAFreshProduct) {
   for (int dim : {2, 3}) {
     SCOPED_TRACE(dim);
