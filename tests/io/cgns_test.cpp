@@ -41,6 +41,22 @@ TEST(Cgns, ConformingZonesMergeAndBcsBecomeGroups) {
 // Every prefix of a written file is an InputError naming the file and a position (a CGNS
 // node, an Exodus block, set, the coordinates or the header), or the whole mesh; never a
 // crash, a message from the libraries or another exception.
+// A file of the CGNS project's own tools (tecplot_to_cgns, tests/data/io/independent_cgns.sh)
+// from the tetrahedra of a Gmsh mesh: the same nodes (the tool stores them as RealSingle) and
+// the same cells.
+TEST(Cgns, ReadsWhatTheCgnsToolsWrite) {
+  const fs::path dir = fs::path(MESHMORPH_TEST_DATA) / "io";
+  const Mesh m = read_cgns(dir / "tecplot_to_cgns_tet4.cgns");
+  const Mesh gmsh = read_mesh(dir / "gmsh_tet4_22a.msh");
+  ASSERT_EQ(m.n_nodes(), gmsh.n_nodes());
+  EXPECT_LT((m.x - gmsh.x).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_GT((m.x - gmsh.x).cwiseAbs().maxCoeff(), 0.0);  // single precision indeed: read as written
+  ASSERT_EQ(m.cells.size(), 1u);
+  ASSERT_EQ(gmsh.cells.size(), 1u);
+  EXPECT_EQ(m.cells[0].type, ElementType::Tetrahedron);
+  EXPECT_EQ(m.cells[0].nodes, gmsh.cells[0].nodes);
+}
+
 TEST(Cgns, EveryTruncationOfCgnsAndExodusIsAnInputError) {
   const fs::path dir = fs::temp_directory_path() / ("meshmorph_cgns_cut_" + std::to_string(::getpid()));
   fs::create_directories(dir);
