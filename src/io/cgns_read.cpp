@@ -142,9 +142,10 @@ void check_zones_conform(const Mesh& mesh, const std::vector<bool>& shared, cons
     const CellFacet& cf = topo.facets[static_cast<std::size_t>(f)][0];
     const auto [bi, c] = topo.locate(cf.cell);
     const CellBlock& blk = mesh.cells[bi];
+    const std::int32_t* nodes = blk.cell(c);  // a lambda may not capture a structured binding (clang 14)
     const auto& local = corner_facets(blk.type)[static_cast<std::size_t>(cf.local)];
-    if (std::all_of(local.begin(), local.end(), [&](int i) { return shared[static_cast<std::size_t>(blk.cell(c)[i])]; })) {
-      const std::int32_t v = blk.cell(c)[local[0]];
+    if (std::all_of(local.begin(), local.end(), [&](int i) { return shared[static_cast<std::size_t>(nodes[i])]; })) {
+      const std::int32_t v = nodes[local[0]];
       throw InputError(file + ": node /Base: the zones do not conform: a facet at node " + std::to_string(v + 1) + " (" +
                        std::to_string(mesh.x(0, v)) + ", " + std::to_string(mesh.x(1, v)) +
                        (mesh.dim == 3 ? ", " + std::to_string(mesh.x(2, v)) : std::string()) +

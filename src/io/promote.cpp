@@ -108,7 +108,8 @@ std::string promote_incomplete(std::vector<CellBlock>& blocks, std::vector<doubl
       const double v = combine([&](std::int32_t j) { return xyz[3 * static_cast<std::size_t>(j) + k]; });
       xyz.push_back(v);
     }
-    for (auto& [name, values] : fields) {
+    for (auto& field : fields) {
+      std::vector<double>& values = field.second;  // a lambda may not capture a structured binding (clang 14)
       const double v = combine([&](std::int32_t j) { return values[static_cast<std::size_t>(j)]; });
       values.push_back(v);
     }
