@@ -83,11 +83,15 @@ void write_result_mesh(const Report& report, const Mesh& moved, const QualityRep
                        const std::optional<std::filesystem::path>& output,
                        const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   if (!report.converged || !output) return;
+  write_mesh(*output, moved, mesh_options(q, point_vectors));
+}
+
+WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   WriteOptions wo;
   if (!q.quality.empty()) wo.cell_data[std::string(kQualityField)] = q.quality;
   wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
   wo.point_vectors = point_vectors;
-  write_mesh(*output, moved, wo);
+  return wo;
 }
 
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,

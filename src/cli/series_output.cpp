@@ -11,14 +11,6 @@
 namespace meshmorph::detail {
 namespace {
 
-WriteOptions with_quality(const QualityReport& q, std::map<std::string, Eigen::MatrixXd> vectors) {
-  WriteOptions wo;
-  if (!q.quality.empty()) wo.cell_data[std::string(kQualityField)] = q.quality;
-  wo.cell_data[std::string(kShapeQualityField)] = q.shape_quality;
-  wo.point_vectors = std::move(vectors);
-  return wo;
-}
-
 // ParaView's collection format: one DataSet per file, at its time, names relative to the
 // .pvd's own folder (every file of a series lies beside it).
 void write_pvd(const std::filesystem::path& path, const std::vector<std::pair<double, std::filesystem::path>>& files) {
@@ -57,7 +49,7 @@ std::map<std::string, Eigen::MatrixXd> SeriesOutput::fields(const Mesh& mesh) co
 void SeriesOutput::step(int step, const Mesh& mesh) {
   if (each_step_ && files_.output) {
     const std::filesystem::path path = step_path(*files_.output, step);
-    write_mesh(path, mesh, with_quality(quality_report(mesh, &input_), fields(mesh)));
+    write_mesh(path, mesh, mesh_options(quality_report(mesh, &input_), fields(mesh)));
     written_.emplace_back(step, path);
   }
   previous_ = mesh.x;

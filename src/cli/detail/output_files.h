@@ -11,6 +11,7 @@
 #include "meshmorph/app/report.h"
 #include "meshmorph/app/run_output.h"
 #include "meshmorph/cli/commands.h"
+#include "meshmorph/io/mesh_io.h"
 
 namespace meshmorph::detail {
 
@@ -41,6 +42,9 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
 
 /// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
 /// method writes no mesh otherwise, DESIGN §3.1).
+/// How a method's mesh is written: its per-cell quality as cell data, `point_vectors` as point data.
+WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Eigen::MatrixXd>& point_vectors);
+
 void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
                        const std::optional<std::filesystem::path>& output,
                        const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
