@@ -75,7 +75,7 @@ void CgAmgSolver::set_coarse_space(const Eigen::SparseMatrix<double>& P) {
 }
 
 LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                                             Eigen::VectorXd& x, double rtol) {
+                                             Eigen::VectorXd& x, double rtol, double decrease) {
   const PhaseTimer timer(Phase::Solve);
   if (!ready_ || A.rows() != A_.n || A.nonZeros() != nnz_) {
     LinearSolveStats stats;
@@ -89,17 +89,17 @@ LinearSolveStats CgAmgSolver::solve_previous(const Eigen::SparseMatrix<double>& 
     stats.message = "the new matrix does not fit the old preconditioner";
     return stats;
   }
-  return solve(b, x, rtol);
+  return solve(b, x, rtol, decrease);
 }
 
-LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+LinearSolveStats CgAmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, double decrease) {
   const PhaseTimer timer(Phase::Solve);
-  const LinearSolveStats stats = cg(b, x, rtol);
+  const LinearSolveStats stats = cg(b, x, rtol, decrease);
   track(stats);
   return stats;
 }
 
-LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, double decrease) {
   LinearSolveStats stats;
   if (!ready_) {
     stats.message = "matrix not positive definite";
@@ -120,8 +120,10 @@ LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, d
   residual(A_, b.data(), x.data(), r_.data(), threads);
   double r_norm = std::sqrt(dot(r_.data(), r_.data(), n, threads));
   // CG on the recurrence residual; at its convergence the true residual is checked and CG
-  // restarts from it if rounding has let the two drift apart.
-  while (r_norm > rtol * b_norm && stats.iterations < options_.max_iterations) {
+  // restarts from it if rounding has let the two drift apart. Where the decrease left is
+  // below `decrease`, the recurrence's is trusted: its drift is far below the residual there.
+  bool small_decrease = false;
+  while (r_norm > rtol * b_norm && !small_decrease && stats.iterations < options_.max_iterations) {
     amg_.apply(r_.data(), z_.data());
     double rz = dot(r_.data(), z_.data(), n, threads);
     p_ = z_;
@@ -147,16 +149,19 @@ LinearSolveStats CgAmgSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, d
       if (r_norm <= rtol * b_norm) break;
       amg_.apply(r_.data(), z_.data());
       const double rz_new = dot(r_.data(), z_.data(), n, threads);
+      small_decrease = 0.5 * rz_new <= decrease;
+      if (small_decrease) break;
       const double beta = rz_new / rz;
       rz = rz_new;
 #pragma omp parallel for num_threads(threads) schedule(static)
       for (int i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
     }
+    if (small_decrease) break;
     residual(A_, b.data(), x.data(), r_.data(), threads);
     r_norm = std::sqrt(dot(r_.data(), r_.data(), n, threads));
   }
   stats.relative_residual = r_norm / b_norm;
-  stats.ok = r_norm <= rtol * b_norm;
+  stats.ok = r_norm <= rtol * b_norm || small_decrease;
   if (!stats.ok) stats.message = "cg-amg: no convergence in " + std::to_string(stats.iterations) + " iterations";
   return stats;
 }

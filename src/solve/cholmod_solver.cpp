@@ -182,7 +182,8 @@ void CholmodSolver::solve(const double* b, double* x) {
   cholmod_free_dense(&X, &impl_->common);
 }
 
-LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/) {
+LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/,
+                                      double /*decrease*/) {
   const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!factorized_) {
@@ -198,7 +199,7 @@ LinearSolveStats CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd&
 }
 
 LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                                               Eigen::VectorXd& x, double rtol) {
+                                               Eigen::VectorXd& x, double rtol, double decrease) {
   const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!(factorized_ && A.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
@@ -226,6 +227,7 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
   p = z;
   double rz = r.dot(z);
   double r_norm = r.norm();
+  bool small_decrease = false;
   while (r_norm > tol && stats.iterations < k_max_iterations) {
     q.noalias() = A * p;
     const double pq = p.dot(q);
@@ -242,11 +244,15 @@ LinearSolveStats CholmodSolver::solve_previous(const Eigen::SparseMatrix<double>
     if (r_norm <= tol) break;
     M.solve(r.data(), z.data());
     const double rz_new = r.dot(z);
+    if (0.5 * rz_new <= decrease) {
+      small_decrease = true;
+      break;
+    }
     p = z + (rz_new / rz) * p;
     rz = rz_new;
   }
   stats.relative_residual = b_norm > 0.0 ? r_norm / b_norm : 0.0;
-  stats.ok = r_norm <= tol && x.allFinite();
+  stats.ok = (r_norm <= tol || small_decrease) && x.allFinite();
   if (!stats.ok && stats.message.empty())
     stats.message = "the previous factorization no longer preconditions well enough";
   return stats;

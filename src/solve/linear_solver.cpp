@@ -9,7 +9,7 @@
 namespace meshmorph {
 
 LinearSolveStats LinearSolver::solve_previous(const Eigen::SparseMatrix<double>& /*A*/, const Eigen::VectorXd& /*b*/,
-                                              Eigen::VectorXd& /*x*/, double /*rtol*/) {
+                                              Eigen::VectorXd& /*x*/, double /*rtol*/, double /*decrease*/) {
   LinearSolveStats stats;
   stats.message = "no earlier set-up to reuse";
   return stats;

@@ -30,7 +30,8 @@ bool MinresJacobiSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   return ready_ = true;
 }
 
-LinearSolveStats MinresJacobiSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+LinearSolveStats MinresJacobiSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol,
+                                           double /*decrease*/) {
   const PhaseTimer timer(Phase::Solve);
   LinearSolveStats stats;
   if (!ready_) {

@@ -236,7 +236,7 @@ bool PetscSolver::factorize(const Eigen::SparseMatrix<double>& A) {
 }
 
 LinearSolveStats PetscSolver::solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                                             Eigen::VectorXd& x, double rtol) {
+                                             Eigen::VectorXd& x, double rtol, double /*decrease*/) {
   const PhaseTimer timer(Phase::Solve);
   Impl& s = *impl_;
   if (!s.ready || !s.same_pattern(A)) {
@@ -254,7 +254,7 @@ LinearSolveStats PetscSolver::solve_previous(const Eigen::SparseMatrix<double>& 
   return solve(b, x, rtol);
 }
 
-LinearSolveStats PetscSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) {
+LinearSolveStats PetscSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, double /*decrease*/) {
   const PhaseTimer timer(Phase::Solve);
   Impl& s = *impl_;
   const ScopedThreads threads(s.options.threads);

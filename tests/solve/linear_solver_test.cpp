@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/solve/linear_solver.h"
 
+#include <Eigen/SparseCholesky>
 #include <gtest/gtest.h>
 
 #include "meshmorph/energy/coarse_space.h"
@@ -105,6 +106,37 @@ TEST(LinearSolver, SolvePreviousUsesTheOldSetUpForANewMatrixOfTheSamePattern) {
     EXPECT_LE(relative_residual(B, b, x), 1e-10);  // CG on the new matrix, the old set-up preconditioning
     const Eigen::SparseMatrix<double> C = test::stiffness_matrix(3, 7, true, 1.0, 1.0);  // other pattern
     EXPECT_FALSE(solver->solve_previous(C, test::random_vector(C.rows()), x, 1e-10).ok);
+  }
+}
+
+// A Newton solve may stop once ½ rᵀM⁻¹r, standing in for the decrease ½ rᵀA⁻¹r its residual
+// leaves undone, is small: long before the relative residual, and leaving about that undone.
+TEST(LinearSolver, SolvesStopOnceTheDecreaseLeftInTheResidualIsSmall) {
+  const Eigen::SparseMatrix<double> A = test::stiffness_matrix(3, 8, true, 1.0, 1.0);
+  const Eigen::SparseMatrix<double> B = 1.2 * A;
+  const Eigen::VectorXd b = test::random_vector(A.rows());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> exact(B);
+  const double full = 0.5 * b.dot(exact.solve(b));  // the decrease of the exact solution
+  std::vector<std::unique_ptr<LinearSolver>> solvers;
+  solvers.push_back(make_linear_solver(options_for(LinearSolverKind::Cholesky, 3), static_cast<std::size_t>(A.rows())));
+  solvers.push_back(multilevel_solver(3));
+  for (const auto& solver : solvers) {
+    SCOPED_TRACE(solver->name());
+    ASSERT_TRUE(solver->factorize(A));
+    for (double fraction : {1e-4, 1e-8}) {
+      const double decrease = fraction * full;
+      Eigen::VectorXd tight, loose;
+      const LinearSolveStats t = solver->solve_previous(B, b, tight, 1e-12);
+      const LinearSolveStats l = solver->solve_previous(B, b, loose, 1e-12, decrease);
+      ASSERT_TRUE(t.ok) << t.message;
+      ASSERT_TRUE(l.ok) << l.message;
+      EXPECT_GE(l.iterations, 1);
+      EXPECT_LT(l.iterations, t.iterations);
+      const Eigen::VectorXd r = b - B * loose;
+      const double left = 0.5 * r.dot(exact.solve(r));
+      EXPECT_LE(left, 4.0 * decrease);
+      EXPECT_NEAR(0.5 * b.dot(loose) + left, full, 1e-9 * full);
+    }
   }
 }
 

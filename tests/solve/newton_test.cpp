@@ -18,7 +18,7 @@ class DenseSolver final : public LinearSolver {
     ++factorizations;
     return llt_.info() == Eigen::Success;
   }
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol) override {
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, double /*decrease*/) override {
     x = llt_.solve(b);
     LinearSolveStats s;
     s.ok = true;
@@ -34,7 +34,7 @@ class DenseSolver final : public LinearSolver {
   // As the real backends: A solved to rtol, preconditioned by the old factor (here by
   // iterative refinement), or not at all within a few corrections.
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                  double rtol) override {
+                                  double rtol, double /*decrease*/) override {
     LinearSolveStats s;
     if (llt_.info() != Eigen::Success || llt_.rows() != A.rows()) return s;
     ++reuses;
@@ -293,11 +293,11 @@ class SetUpThenSolve final : public LinearSolver {
     ++setups;
     return true;
   }
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/) override {
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double /*rtol*/, double /*decrease*/) override {
     return solve_with(A_, b, x);
   }
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                  double /*rtol*/) override {
+                                  double /*rtol*/, double /*decrease*/) override {
     if (!reuse_ || A_.rows() != A.rows()) return {};
     return solve_with(A, b, x);
   }

@@ -73,17 +73,22 @@ class LinearSolver {
   /// Solves with the last factorized matrix; `x` is the initial guess for the iterative
   /// backend (resized and zeroed when its size is wrong) and the solution on return.
   /// `rtol` ≤ 0 means the options' rtol. Iterative: stops with ok = false when it meets
-  /// negative curvature (A not SPD) or reaches max_iterations.
-  virtual LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) = 0;
+  /// negative curvature (A not SPD) or reaches max_iterations. `decrease` > 0: an iterative
+  /// solve also stops, ok, after one iteration at least, once ½ rᵀM⁻¹r ≤ decrease for its
+  /// residual r and preconditioner M (M⁻¹ standing in for A⁻¹): for a Newton system, the model
+  /// decrease that the residual leaves undone is below it (docs/morph.md, "Stopping a Newton
+  /// solve"). The direct solve and the PETSc backends ignore it.
+  virtual LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0,
+                                 double decrease = 0.0) = 0;
   /// Solves A x = b with the set-up of the last successful factorize(), made for an earlier
   /// matrix of A's pattern, as the preconditioner of conjugate gradients on A (the iterative
   /// backend keeps A as the matrix of later solves). Between Newton steps this replaces a new
   /// factorization while the old one still preconditions well. `x` is the initial guess as
-  /// in solve(). ok = false when there is no
+  /// in solve(), and so are `rtol` and `decrease`. ok = false when there is no
   /// such set-up (the default for backends that do not offer it), when A shows negative
   /// curvature, or when the tolerance is not reached within the backend's budget.
   virtual LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                                          Eigen::VectorXd& x, double rtol = 0.0);
+                                          Eigen::VectorXd& x, double rtol = 0.0, double decrease = 0.0);
   /// The iterative backend's first coarse level: P (unknowns × coarse unknowns, columns in
   /// whole blocks of block_size per coarse node), in place of the first aggregation. For
   /// high-order meshes the vertex hats (energy/coarse_space.h), which keep the set-up's

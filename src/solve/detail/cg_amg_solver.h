@@ -15,16 +15,17 @@ class CgAmgSolver final : public LinearSolver {
   explicit CgAmgSolver(const LinearSolverOptions& options);
 
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0,
+                         double decrease = 0.0) override;
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                  double rtol = 0.0) override;
+                                  double rtol = 0.0, double decrease = 0.0) override;
   void set_coarse_space(const Eigen::SparseMatrix<double>& P) override;
   std::string name() const override { return "cg-amg"; }
 
   const AmgHierarchy& hierarchy() const { return amg_; }
 
  private:
-  LinearSolveStats cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol);
+  LinearSolveStats cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, double decrease);
   void track(const LinearSolveStats& stats);  // decides when the hierarchy is rebuilt
   LinearSolverOptions options_;
   AmgHierarchy amg_;

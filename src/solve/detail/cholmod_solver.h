@@ -34,9 +34,10 @@ class CholmodSolver final : public LinearSolver {
   CholmodSolver& operator=(const CholmodSolver&) = delete;
 
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0,
+                         double decrease = 0.0) override;
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                  double rtol = 0.0) override;
+                                  double rtol = 0.0, double decrease = 0.0) override;
   bool cheap_previous() const override { return true; }
   std::string name() const override { return "cholmod"; }
 

@@ -18,7 +18,8 @@ class MinresJacobiSolver final : public LinearSolver {
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
   /// Stops when ‖b − Ax‖ ≤ rtol·‖b‖ (checked on the true residual) or after the options'
   /// max_iterations (ok = false).
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0,
+                         double decrease = 0.0) override;
   std::string name() const override { return "minres-jacobi"; }
 
  private:

@@ -30,10 +30,11 @@ class PetscSolver final : public LinearSolver {
   bool factorize(const Eigen::SparseMatrix<double>& A) override;
   /// Stops when ‖b − Ax‖ ≤ rtol·‖b‖ on the true residual (CG restarts from it when the
   /// recurrence's has drifted), on negative curvature (indefinite) or after max_iterations.
-  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0) override;
+  LinearSolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 0.0,
+                         double decrease = 0.0) override;
   /// CG on A with the preconditioner of the last factorize() (same pattern required).
   LinearSolveStats solve_previous(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                  double rtol = 0.0) override;
+                                  double rtol = 0.0, double decrease = 0.0) override;
   std::string name() const override;
 
  private:
