@@ -69,6 +69,14 @@ class MorphImpl final : public Morpher::Impl {
       started_ = true;
     }
     const auto set_mu = [&] { penalty.mu = mu0_ * m_ / options_.m0 * P.boundary_weight(); };
+    // A multigrid set-up made before μ grew by m_factor preconditions the new Hessian poorly
+    // (CG took 92 iterations for the first solve at μ = 3.9e8 on the 50.7k shell): the next
+    // subproblem makes its own. A direct factor is tried first as ever (a few cheap iterations).
+    const auto raise_mu = [&] {
+      m_ *= options_.m_factor;
+      set_mu();
+      if (!solver_->cheap_previous()) newton_memory_.reusable = false;
+    };
     set_mu();
     // ε₀, δ₀ restart with each step (relative to how far this step has to go); μ, m, λ and
     // the weights carry over (paper 000 §5.5).
@@ -181,12 +189,10 @@ class MorphImpl final : public Morpher::Impl {
         // μ reaches the boundary in 5 iterations where the printed rule took 7–12
         // (docs/morph.md, "Raising μ after multiplier updates").
         if (outer > 1 && emax > tol_max && c > options_.min_decrease * result.history[result.history.size() - 2].constraint_norm) {
-          m_ *= options_.m_factor;
-          set_mu();
+          raise_mu();
         }
       } else {  // lines 16–21
-        m_ *= options_.m_factor;
-        set_mu();
+        raise_mu();
         eps = options_.eps0 * c_start * std::pow(options_.m0 / m_, 0.1);
         delta = std::max(options_.delta0 * (options_.m0 / m_), delta_star);
       }

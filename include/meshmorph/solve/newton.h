@@ -118,6 +118,9 @@ struct NewtonMemory {
   /// Whether the solver holds a factorization of a Hessian with at most a small shift, to be
   /// tried at the next iterate before a new factorization.
   bool reusable = false;
+  /// Newton matrices solved with the solver's set-up since it was made for another
+  /// (solve_previous): a multigrid set-up serves at most two after its own.
+  int reuses = 0;
   /// Whether the exact Hessian is worth trying (NewtonOptions::exact_first): set by a full
   /// projected step (α = 1), cleared when no small shift makes the exact Hessian positive
   /// definite. Far from a minimiser the projected Hessian's steps go much further.
