@@ -38,14 +38,8 @@ void put_variable_names(const detail::ExodusFile& f, ex_entity_type type, const 
                         const std::string& where) {
   if (names.empty()) return;
   f.check(ex_put_variable_param(f.id(), type, static_cast<int>(names.size())), where);
-  std::vector<std::vector<char>> buffers;
-  std::vector<char*> ptrs;
-  for (const std::string& n : names) {
-    buffers.emplace_back(n.begin(), n.end());
-    buffers.back().push_back('\0');
-  }
-  for (auto& b : buffers) ptrs.push_back(b.data());
-  f.check(ex_put_variable_names(f.id(), type, static_cast<int>(names.size()), ptrs.data()), where);
+  detail::ExodusNames c(names);
+  f.check(ex_put_variable_names(f.id(), type, static_cast<int>(names.size()), c.ptrs.data()), where);
 }
 
 }  // namespace

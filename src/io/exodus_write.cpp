@@ -32,17 +32,19 @@ std::string checked_name(const std::string& name) {
 // Puts the names of `n` entities of `type`, looked up by their ids.
 void put_names(const detail::ExodusFile& f, ex_entity_type type, const std::vector<std::string>& names, const std::string& where) {
   if (names.empty()) return;
-  std::vector<std::vector<char>> buffers;
-  std::vector<char*> ptrs;
+  detail::ExodusNames c(names);
+  f.check(ex_put_names(f.id(), type, c.ptrs.data()), where);
+}
+
+}  // namespace
+
+detail::ExodusNames::ExodusNames(const std::vector<std::string>& names) {
   for (const std::string& n : names) {
     buffers.emplace_back(n.begin(), n.end());
     buffers.back().push_back('\0');
   }
   for (auto& b : buffers) ptrs.push_back(b.data());
-  f.check(ex_put_names(f.id(), type, ptrs.data()), where);
 }
-
-}  // namespace
 
 std::vector<detail::ExodusBlock> detail::write_exodus_mesh(const ExodusFile& f, const Mesh& mesh) {
   std::map<std::pair<int, std::int32_t>, std::string> group_name;

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "io/detail/exodus_file.h"
@@ -17,6 +18,13 @@ struct ExodusBlock {
   std::int32_t tag;
   int first = 0;            ///< global number of its first element (1-based)
   std::ptrdiff_t offset = 0;  ///< of `cells`' first cell in Mesh::cells (blocks concatenated); −1: facets
+};
+
+/// `names` as the array of C strings the Exodus calls take, valid while this lives.
+struct ExodusNames {
+  explicit ExodusNames(const std::vector<std::string>& names);
+  std::vector<std::vector<char>> buffers;
+  std::vector<char*> ptrs;
 };
 
 /// Writes `mesh` into the open file `f` as write_exodus lays it out (coordinates = mesh.x);
