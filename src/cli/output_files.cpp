@@ -18,6 +18,7 @@
 #include "meshmorph/io/foam.h"
 #include "meshmorph/io/input_files.h"
 #include "meshmorph/io/mesh_io.h"
+#include "meshmorph/io/mesh_series.h"
 #include "meshmorph/log.h"
 
 namespace meshmorph::detail {
@@ -69,7 +70,7 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
     throw InputError(where + "output_each_step: needs \"output\" (or -o) to name the step files");
   if (output) {
     outputs.push_back({where + (c ? "output" : "-o"), *output});
-    if (c && c->output_each_step) {
+    if (c && c->output_each_step && !is_series_format(*output)) {  // (.cgns, .exo: the steps go in the output)
       for (int s = 1; s < c->steps; ++s)
         outputs.push_back({where + "output_each_step (step " + std::to_string(s) + ")", step_path(*output, s), false});
       if (const auto pvd = series_path(*output)) outputs.push_back({where + "output_each_step (series)", *pvd, false});

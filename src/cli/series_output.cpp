@@ -6,6 +6,7 @@
 
 #include "meshmorph/io/atomic_file.h"
 #include "meshmorph/io/mesh_io.h"
+#include "meshmorph/io/mesh_series.h"
 #include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph::detail {
@@ -35,34 +36,57 @@ std::optional<std::filesystem::path> series_path(const std::filesystem::path& ou
 }
 
 SeriesOutput::SeriesOutput(const Mesh& input, const CaseFile* c, const RunFiles& files)
-    : input_(input), dt_(c ? c->dt : std::nullopt), each_step_(c && c->output_each_step), files_(files),
-      previous_(input.x) {}
+    : input_(input), dt_(c ? c->dt : std::nullopt), each_step_(c && c->output_each_step),
+      one_file_(each_step_ && files.output && is_series_format(*files.output)), files_(files), previous_(input.x) {}
 
-std::map<std::string, Eigen::MatrixXd> SeriesOutput::fields(const Mesh& mesh) const {
+std::map<std::string, Eigen::MatrixXd> SeriesOutput::fields(const Eigen::MatrixXd& x, const Eigen::MatrixXd& previous) const {
   std::map<std::string, Eigen::MatrixXd> v;
-  if (mesh.x.cols() != input_.x.cols()) return v;  // a method that added nodes: no node's motion
-  v["displacement"] = mesh.x - input_.x;
-  if (dt_) v["mesh_velocity"] = (mesh.x - previous_) / *dt_;
+  if (x.cols() != input_.x.cols()) return v;  // a method that added nodes: no node's motion
+  v["displacement"] = x - input_.x;
+  if (dt_) v["mesh_velocity"] = (x - previous) / *dt_;
   return v;
 }
 
 void SeriesOutput::step(int step, const Mesh& mesh) {
-  if (each_step_ && files_.output) {
+  if (one_file_) {
+    kept_.push_back({step, mesh.x, mesh_options(quality_report(mesh, &input_), {}).cell_data});
+  } else if (each_step_ && files_.output) {
     const std::filesystem::path path = step_path(*files_.output, step);
-    write_mesh(path, mesh, mesh_options(quality_report(mesh, &input_), fields(mesh)));
+    write_mesh(path, mesh, mesh_options(quality_report(mesh, &input_), fields(mesh.x, previous_)));
     written_.emplace_back(step, path);
   }
   previous_ = mesh.x;
   last_step_ = step;
 }
 
+// The input's cells and groups at the start positions; a step each increment and the result.
+void SeriesOutput::write_one_file(const RunOutput& run) const {
+  const int n = static_cast<int>(kept_.size()) + 1;
+  write_mesh_series(*files_.output, input_, n, [&](int k) {
+    const bool result = k + 1 == n;
+    const auto at = static_cast<std::size_t>(k);
+    MeshStep s;
+    s.x = result ? run.moved.x : kept_[at].x;
+    s.time = time_of(result ? last_step_ + 1 : kept_[at].step);
+    s.point_vectors = fields(s.x, k == 0 ? input_.x : kept_[at - 1].x);
+    s.cell_data = result ? mesh_options(run.quality, {}).cell_data : kept_[at].cell_data;
+    return s;
+  });
+}
+
 void SeriesOutput::finish(RunOutput& run, const RunTimings& timings) {
-  write_run(run, files_, timings, fields(run.moved));
+  if (one_file_) {
+    if (run.report.converged) write_one_file(run);
+    RunFiles report_only = files_;
+    report_only.output.reset();
+    write_run(run, report_only, timings);
+    return;
+  }
+  write_run(run, files_, timings, fields(run.moved.x, previous_));
   if (!each_step_ || !files_.output) return;
   const std::optional<std::filesystem::path> pvd = series_path(*files_.output);
   if (!pvd) return;
   std::vector<std::pair<double, std::filesystem::path>> series;
-  const auto time_of = [&](int step) { return dt_ ? step * *dt_ : static_cast<double>(step); };
   for (const auto& [step, path] : written_) series.emplace_back(time_of(step), path);
   if (run.report.converged) series.emplace_back(time_of(last_step_ + 1), *files_.output);
   if (!series.empty()) write_pvd(*pvd, series);

@@ -26,24 +26,92 @@ using detail::CgnsZone;
 // Nodes of equal coordinates in earlier zones: how zones that share an interface are merged.
 using Coordinates = std::array<std::uint64_t, 3>;
 
+static const char* const coordinate_names[] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
+
+// The grid of the zone's last time step: the last name of ZoneIterativeData_t's
+// GridCoordinatesPointers (a moving grid), else GridCoordinates.
+std::string last_grid(const CgnsFile& f, const CgnsZone& z) {
+  char name[33] = {};
+  const int found = cg_ziter_read(f.fn(), z.base, z.zone, name);
+  if (found == CG_NODE_NOT_FOUND) return "GridCoordinates";
+  const std::string where = "node " + z.path + "/" + name;
+  f.check(found, where);
+  f.check(cg_goto(f.fn(), z.base, "Zone_t", z.zone, "ZoneIterativeData_t", 1, "end"), where);
+  int n = 0;
+  f.check(cg_narrays(&n), where);
+  for (int a = 1; a <= n; ++a) {
+    char array[33] = {};
+    DataType_t type{};
+    int rank = 0;
+    cgsize_t dims[12] = {};
+    f.check(cg_array_info(a, array, &type, &rank, dims), where);
+    if (std::string(array) != "GridCoordinatesPointers") continue;
+    if (type != Character || rank != 2 || dims[0] != 32 || dims[1] < 1)
+      throw InputError(f.name() + ": " + where + "/GridCoordinatesPointers: not 32 characters a step");
+    std::vector<char> chars(static_cast<std::size_t>(dims[0] * dims[1]));
+    f.check(cg_array_read(a, chars.data()), where + "/GridCoordinatesPointers");
+    std::string last(chars.end() - 32, chars.end());
+    last.erase(last.find_last_not_of(std::string(" \0", 2)) + 1);
+    return last;
+  }
+  return "GridCoordinates";
+}
+
+// The coordinates of a GridCoordinates_t other than GridCoordinates (which cg_coord_read reads).
+void read_grid(const CgnsFile& f, const CgnsZone& z, const std::string& grid, cgsize_t n, int phys_dim,
+               std::array<std::vector<double>, 3>& xyz) {
+  const std::string where = "node " + z.path + "/" + grid;
+  int n_grids = 0, g = 0;
+  f.check(cg_ngrids(f.fn(), z.base, z.zone, &n_grids), "node " + z.path);
+  for (int i = 1; i <= n_grids && g == 0; ++i) {
+    char name[33] = {};
+    f.check(cg_grid_read(f.fn(), z.base, z.zone, i, name), "node " + z.path + "/GridCoordinates_t " + std::to_string(i));
+    if (grid == name) g = i;
+  }
+  if (g == 0)
+    throw InputError(f.name() + ": node " + z.path + "/ZoneIterativeData: GridCoordinatesPointers names '" + grid +
+                     "', which is no GridCoordinates_t of the zone");
+  f.check(cg_goto(f.fn(), z.base, "Zone_t", z.zone, "GridCoordinates_t", g, "end"), where);
+  int n_arrays = 0;
+  f.check(cg_narrays(&n_arrays), where);
+  for (int k = 0; k < phys_dim; ++k) {
+    int found = 0;
+    for (int a = 1; a <= n_arrays && found == 0; ++a) {
+      char array[33] = {};
+      DataType_t type{};
+      int rank = 0;
+      cgsize_t dims[12] = {};
+      f.check(cg_array_info(a, array, &type, &rank, dims), where);
+      if (std::string(array) != coordinate_names[k]) continue;
+      if (rank != 1 || dims[0] != n)
+        throw InputError(f.name() + ": " + where + "/" + array + ": holds no value per node of the zone's " + std::to_string(n));
+      found = a;
+    }
+    if (found == 0) throw InputError(f.name() + ": " + where + ": no " + coordinate_names[k]);
+    f.check(cg_array_read_as(found, RealDouble, xyz[k].data()), where + "/" + coordinate_names[k]);
+  }
+}
+
 void read_coordinates(const CgnsFile& f, CgnsZone& z, cgsize_t n, int phys_dim, detail::MeshBuilder& b,
                       std::map<Coordinates, std::int32_t>& earlier, std::vector<bool>& shared, bool merge) {
   std::array<std::vector<double>, 3> xyz;
-  static const char* const names[] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
+  const auto* names = coordinate_names;
+  const std::string grid = last_grid(f, z);  // (a moving grid: its last step)
   cgsize_t lo = 1, hi = n;
   for (int k = 0; k < 3; ++k) {
     xyz[k].assign(static_cast<std::size_t>(n), 0.0);
-    if (k >= phys_dim) continue;
+    if (k >= phys_dim || grid != "GridCoordinates") continue;
     f.check(cg_coord_read(f.fn(), z.base, z.zone, names[k], RealDouble, &lo, &hi, xyz[k].data()),
             "node " + z.path + "/GridCoordinates/" + names[k]);
   }
+  if (grid != "GridCoordinates") read_grid(f, z, grid, n, phys_dim, xyz);
   std::map<Coordinates, std::int32_t> here;
   for (cgsize_t i = 0; i < n; ++i) {
     Coordinates key{};
     for (int k = 0; k < 3; ++k) {
       const double v = xyz[k][static_cast<std::size_t>(i)];
       if (!std::isfinite(v))
-        throw InputError(f.name() + ": node " + z.path + "/GridCoordinates/" + names[k] + ": node " + std::to_string(i + 1) +
+        throw InputError(f.name() + ": node " + z.path + "/" + grid + "/" + names[k] + ": node " + std::to_string(i + 1) +
                          " has a non-finite coordinate");
       key[k] = std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v);
     }
@@ -60,7 +128,7 @@ void read_coordinates(const CgnsFile& f, CgnsZone& z, cgsize_t n, int phys_dim, 
     b.tags.push_back(j + 1);
     for (int k = 0; k < 3; ++k) b.xyz.push_back(xyz[k][static_cast<std::size_t>(i)]);
     if (xyz[2][static_cast<std::size_t>(i)] != 0.0 && b.first_nonzero_z.empty())
-      b.first_nonzero_z = f.name() + ": node " + z.path + "/GridCoordinates: node " + std::to_string(i + 1);
+      b.first_nonzero_z = f.name() + ": node " + z.path + "/" + grid + ": node " + std::to_string(i + 1);
   }
   earlier.merge(here);
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/detail/cgns_file.h"
+#include "io/detail/cgns_writer.h"
 #include "io/detail/library_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/cgns.h"
@@ -50,8 +50,7 @@ std::map<std::pair<int, std::int32_t>, std::string> families(const std::vector<P
 
 }  // namespace
 
-void write_cgns(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown) {
-  const std::lock_guard lock(detail::library_mutex());
+std::pair<int, int> detail::write_cgns_mesh(const CgnsFile& f, const Mesh& mesh) {
   const std::vector<PhysicalGroup> groups = all_groups(mesh);
   const auto family = families(groups);
   // A section per block, cells then facets, so that elements keep their order; points are
@@ -64,7 +63,6 @@ void write_cgns(const std::filesystem::path& file, const Mesh& mesh, const std::
           throw InputError("CGNS has no " + std::string(name_of(b.type)) + " of order " + std::to_string(b.order));
         sections.push_back(&b);
       }
-  const detail::CgnsFile f(file, true, shown.string());
   int base = 0, zone = 0, index = 0;
   f.check(cg_base_write(f.fn(), "Base", mesh.dim, mesh.dim, &base), "node /Base");
   cgsize_t size[3] = {static_cast<cgsize_t>(mesh.n_nodes()), static_cast<cgsize_t>(mesh.n_cells()), 0};
@@ -129,6 +127,16 @@ void write_cgns(const std::filesystem::path& file, const Mesh& mesh, const std::
     }
     f.check(cg_famname_write(name.c_str()), "FamilyName of " + name);
   }
+  return {base, zone};
+}
+
+void write_cgns(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown,
+                const std::map<std::string, std::vector<double>>& cell_data,
+                const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
+  const std::lock_guard lock(detail::library_mutex());
+  const detail::CgnsFile f(file, true, shown.string());
+  const auto [base, zone] = detail::write_cgns_mesh(f, mesh);
+  detail::write_cgns_fields(f, base, zone, mesh, "FlowSolution", "CellData", cell_data, point_vectors);
 }
 
 }  // namespace meshmorph

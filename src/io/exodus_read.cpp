@@ -58,6 +58,35 @@ int facet_of_side(ElementType type, int s) {
   return -1;
 }
 
+// A moving mesh (write_exodus_series) at its last time step: the coordinates plus the nodal
+// variables displacement_x/_y(/_z) there, as ParaView shows it.
+void add_last_displacement(const ExodusFile& f, int dim, int n_nodes, std::array<std::vector<double>, 3>& xyz) {
+  const auto n_steps = static_cast<int>(ex_inquire_int(f.id(), EX_INQ_TIME));
+  int n_vars = 0;
+  if (n_steps < 1) return;
+  f.check(ex_get_variable_param(f.id(), EX_NODAL, &n_vars), "nodal variables");
+  std::vector<std::array<char, 257>> buffers(static_cast<std::size_t>(std::max(n_vars, 0)));
+  std::vector<char*> ptrs;
+  for (auto& buf : buffers) {
+    buf.fill('\0');
+    ptrs.push_back(buf.data());
+  }
+  if (n_vars > 0) f.check(ex_get_variable_names(f.id(), EX_NODAL, n_vars, ptrs.data()), "nodal variable names");
+  static const char* const names[] = {"displacement_x", "displacement_y", "displacement_z"};
+  std::array<int, 3> index{};
+  for (int k = 0; k < dim; ++k) {
+    for (int i = 0; i < n_vars; ++i)
+      if (std::string(buffers[static_cast<std::size_t>(i)].data()) == names[k]) index[k] = i + 1;
+    if (index[k] == 0) return;
+  }
+  std::vector<double> d(static_cast<std::size_t>(n_nodes));
+  for (int k = 0; k < dim; ++k) {
+    f.check(ex_get_var(f.id(), n_steps, EX_NODAL, index[k], 1, n_nodes, d.data()),
+            "time step " + std::to_string(n_steps) + ": nodal variable " + names[k]);
+    for (std::size_t j = 0; j < d.size(); ++j) xyz[k][j] += d[j];
+  }
+}
+
 void add_group(detail::MeshBuilder& b, std::set<std::pair<int, std::int32_t>>& named, int dim, std::int32_t tag,
                const std::string& name) {
   if (tag != 0 && !name.empty() && named.insert({dim, tag}).second) b.named_groups.push_back({dim, tag, name});
@@ -77,6 +106,7 @@ Mesh read_exodus(const std::filesystem::path& path) {
   std::array<std::vector<double>, 3> xyz;
   for (auto& c : xyz) c.assign(static_cast<std::size_t>(n_nodes), 0.0);
   f.check(ex_get_coord(f.id(), xyz[0].data(), xyz[1].data(), dim == 3 ? xyz[2].data() : nullptr), "coordinates");
+  add_last_displacement(f, dim, n_nodes, xyz);
   for (int j = 0; j < n_nodes; ++j) {
     b.tags.push_back(j + 1);
     for (int k = 0; k < 3; ++k) {

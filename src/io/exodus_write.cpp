@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "io/detail/exodus_file.h"
+#include "io/detail/exodus_writer.h"
 #include "io/detail/library_file.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/exodus.h"
@@ -16,12 +16,6 @@
 
 namespace meshmorph {
 namespace {
-
-struct Block {
-  const CellBlock* cells;
-  std::int32_t tag;
-  int first = 0;  ///< global number of its first element (1-based)
-};
 
 // Sorted corners of a facet or cell side, as a hash key.
 std::string corner_key(std::vector<std::int32_t> corners) {
@@ -38,20 +32,21 @@ std::string checked_name(const std::string& name) {
 // Puts the names of `n` entities of `type`, looked up by their ids.
 void put_names(const detail::ExodusFile& f, ex_entity_type type, const std::vector<std::string>& names, const std::string& where) {
   if (names.empty()) return;
-  std::vector<std::vector<char>> buffers;
-  std::vector<char*> ptrs;
+  detail::ExodusNames c(names);
+  f.check(ex_put_names(f.id(), type, c.ptrs.data()), where);
+}
+
+}  // namespace
+
+detail::ExodusNames::ExodusNames(const std::vector<std::string>& names) {
   for (const std::string& n : names) {
     buffers.emplace_back(n.begin(), n.end());
     buffers.back().push_back('\0');
   }
   for (auto& b : buffers) ptrs.push_back(b.data());
-  f.check(ex_put_names(f.id(), type, ptrs.data()), where);
 }
 
-}  // namespace
-
-void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown) {
-  const std::lock_guard lock(detail::library_mutex());
+std::vector<detail::ExodusBlock> detail::write_exodus_mesh(const ExodusFile& f, const Mesh& mesh) {
   std::map<std::pair<int, std::int32_t>, std::string> group_name;
   for (const PhysicalGroup& g : mesh.groups) group_name[{g.dim, g.tag}] = checked_name(g.name);
   const auto name_of_group = [&](int dim, std::int32_t tag) {
@@ -59,8 +54,9 @@ void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std
     return it == group_name.end() ? std::string() : it->second;
   };
   // Element blocks: cells, then the lines of a 3D mesh, each split by group.
-  std::vector<Block> blocks;
+  std::vector<ExodusBlock> blocks;
   int n_elements = 0;
+  std::ptrdiff_t offset = 0;  // of the block's first cell in Mesh::cells; −1: facets
   const auto add_blocks = [&](const CellBlock& b) {
     if (exodus_element_name(b.type, b.order).empty())
       throw InputError("Exodus II has no " + std::string(name_of(b.type)) + " of order " + std::to_string(b.order) +
@@ -69,11 +65,15 @@ void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std
     for (const std::int32_t t : b.physical)
       if (std::find(tags.begin(), tags.end(), t) == tags.end()) tags.push_back(t);
     for (const std::int32_t t : tags) {
-      blocks.push_back({&b, t, n_elements + 1});
+      blocks.push_back({&b, t, n_elements + 1, offset});
       n_elements += static_cast<int>(std::count(b.physical.begin(), b.physical.end(), t));
     }
   };
-  for (const CellBlock& b : mesh.cells) add_blocks(b);
+  for (const CellBlock& b : mesh.cells) {
+    add_blocks(b);
+    offset += static_cast<std::ptrdiff_t>(b.n_cells());
+  }
+  offset = -1;
   for (const CellBlock& b : mesh.facets)
     if (b.type == ElementType::Line && mesh.dim == 3) add_blocks(b);
   // Side sets: each facet of a group of dimension dim − 1 as the first (element, side) whose
@@ -83,7 +83,7 @@ void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std
     if (topological_dim(b.type) == mesh.dim - 1)
       for (std::size_t c = 0; c < b.n_cells(); ++c)
         if (b.physical[c] != 0) side_of.emplace(corner_key({b.cell(c), b.cell(c) + n_corners_of(b.type)}), std::array{0, 0});
-  for (const Block& blk : blocks) {
+  for (const ExodusBlock& blk : blocks) {
     const CellBlock& b = *blk.cells;
     if (topological_dim(b.type) != mesh.dim || side_of.empty()) continue;
     const auto& sides = exodus_sides(b.type);
@@ -114,7 +114,6 @@ void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std
       }
     }
 
-  const detail::ExodusFile f(file, true, shown.string());
   f.check(ex_put_init(f.id(), "meshmorph", mesh.dim, static_cast<int64_t>(mesh.n_nodes()), n_elements,
                       static_cast<int64_t>(blocks.size()), static_cast<int64_t>(node_sets.size()),
                       static_cast<int64_t>(side_sets.size())),
@@ -163,6 +162,20 @@ void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std
     names.push_back(name_of_group(0, tag));
   }
   put_names(f, EX_NODE_SET, names, "node set names");
+  return blocks;
+}
+
+void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown,
+                  const std::map<std::string, std::vector<double>>& cell_data,
+                  const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
+  const std::lock_guard lock(detail::library_mutex());
+  const detail::ExodusFile f(file, true, shown.string());
+  const std::vector<detail::ExodusBlock> blocks = detail::write_exodus_mesh(f, mesh);
+  // The coordinates are the mesh's own: an Exodus displacement would be added to them again.
+  MeshStep fields{0.0, {}, cell_data, point_vectors};
+  fields.point_vectors.erase("displacement");
+  if (!fields.cell_data.empty() || !fields.point_vectors.empty())
+    detail::write_exodus_steps(f, mesh, blocks, 1, [&](int) { return fields; }, false);
 }
 
 }  // namespace meshmorph

@@ -15,6 +15,7 @@
 #include "meshmorph/io/exodus.h"
 #include "meshmorph/io/foam.h"
 #include "meshmorph/io/medit.h"
+#include "meshmorph/io/mesh_series.h"
 #include "meshmorph/io/msh.h"
 #include "meshmorph/io/su2.h"
 #include "meshmorph/io/vtu.h"
@@ -30,6 +31,25 @@ std::string extension_of(const std::filesystem::path& path) {
 }
 
 bool is_exodus(const std::string& ext) { return ext == ".exo" || ext == ".e" || ext == ".ex2"; }
+
+void check_group_names(const std::filesystem::path& path, const Mesh& mesh) {
+  for (const PhysicalGroup& g : mesh.groups)
+    if (const auto bad = group_name_problem(g.name))
+      throw InputError(path.string() + ": the name of physical group " + std::to_string(g.tag) + " (dimension " +
+                       std::to_string(g.dim) + ") " + *bad + ", which no mesh format can hold");
+}
+
+// Writes through a library that opens a file by name (CGNS, Exodus II) into a temporary that
+// is renamed to `path`; what the format cannot hold names the file it was for.
+void write_by_library(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
+  write_atomically_at(path, [&](const std::filesystem::path& tmp) {
+    try {
+      write(tmp);
+    } catch (const InputError& e) {
+      throw InputError(path.string() + ": " + e.what());
+    }
+  });
+}
 
 }  // namespace
 
@@ -84,10 +104,7 @@ std::optional<std::string> group_name_problem(std::string_view name) {
 
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {
   const PhaseTimer timer(Phase::Io);
-  for (const PhysicalGroup& g : mesh.groups)
-    if (const auto bad = group_name_problem(g.name))
-      throw InputError(path.string() + ": the name of physical group " + std::to_string(g.tag) + " (dimension " +
-                       std::to_string(g.dim) + ") " + *bad + ", which no mesh format can hold");
+  check_group_names(path, mesh);
   MeshFormat format{};
   if (options.format) {
     format = *options.format;
@@ -105,14 +122,10 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
                        "' (expected .msh, .vtu, .mesh, .su2, .cgns, .exo or the time folder of an OpenFOAM case)");
   }
   if (format == MeshFormat::Cgns || format == MeshFormat::Exodus) {  // libraries that write to a path
-    write_atomically_at(path, [&](const std::filesystem::path& tmp) {
-      try {
-        format == MeshFormat::Cgns ? write_cgns(tmp, mesh, path) : write_exodus(tmp, mesh, path);
-      } catch (const InputError& e) {
-        throw InputError(path.string() + ": " + e.what());
-      }
+    return write_by_library(path, [&](const std::filesystem::path& tmp) {
+      format == MeshFormat::Cgns ? write_cgns(tmp, mesh, path, options.cell_data, options.point_vectors)
+                                 : write_exodus(tmp, mesh, path, options.cell_data, options.point_vectors);
     });
-    return;
   }
   if (format == MeshFormat::Foam) return write_foam_points(path, mesh);
   write_atomically(path, true, [&](std::ostream& out) {
@@ -128,6 +141,23 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const Write
     } catch (const InputError& e) {  // what the format cannot hold: name the file it was for
       throw InputError(path.string() + ": " + e.what());
     }
+  });
+}
+
+bool is_series_format(const std::filesystem::path& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".cgns" || is_exodus(ext);
+}
+
+void write_mesh_series(const std::filesystem::path& path, const Mesh& mesh, int n_steps,
+                       const std::function<MeshStep(int)>& step) {
+  const PhaseTimer timer(Phase::Io);
+  if (!is_series_format(path))
+    throw InputError(path.string() + ": a series in one file is written as .cgns or .exo, not '" + extension_of(path) + "'");
+  check_group_names(path, mesh);
+  write_by_library(path, [&](const std::filesystem::path& tmp) {
+    extension_of(path) == ".cgns" ? write_cgns_series(tmp, mesh, n_steps, step, path)
+                                  : write_exodus_series(tmp, mesh, n_steps, step, path);
   });
 }
 

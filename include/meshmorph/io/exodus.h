@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
 
+#include "meshmorph/io/mesh_series.h"
 #include "meshmorph/mesh/mesh.h"
 
 namespace meshmorph {
@@ -20,9 +25,21 @@ Mesh read_exodus(const std::filesystem::path& path);
 /// block per cell type, order and group (ids 1, 2, …; named after its group, property GROUP
 /// = its tag), facets of dimension dim − 1 as side sets (id = tag, name = group name), point
 /// facets as node sets, lines of a 3D mesh as element blocks. Facets of no group, or on no
-/// cell's side, are not written. Throws InputError without the file name for what Exodus
-/// cannot hold (cells of order 3 or 4, names over 32 characters), IoError when the library
-/// fails.
-void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown);
+/// cell's side, are not written. Fields, where there are any, at one time step (time 0):
+/// each of `point_vectors` (Mesh::dim × n_nodes) as the nodal variables <name>_x/_y(/_z) but
+/// `displacement` (an Exodus displacement is added to the coordinates, which are already the
+/// moved ones), each of `cell_data` (one value per cell of Mesh::cells) as an element variable
+/// of the cell blocks. Throws InputError without the file name for what Exodus cannot hold
+/// (cells of order 3 or 4, names over 32 characters), IoError when the library fails.
+void write_exodus(const std::filesystem::path& file, const Mesh& mesh, const std::filesystem::path& shown,
+                  const std::map<std::string, std::vector<double>>& cell_data = {},
+                  const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
+
+/// Writes a moving mesh (write_mesh_series) as write_exodus lays out `mesh` (coordinates: the
+/// positions the motion starts from), a time step per step (ex_put_time) whose nodal
+/// variables displacement_x/_y(/_z) = x − start carry the motion (the Exodus convention:
+/// ParaView's reader adds them to the coordinates), then its fields as write_exodus's.
+void write_exodus_series(const std::filesystem::path& file, const Mesh& mesh, int n_steps,
+                         const std::function<MeshStep(int)>& step, const std::filesystem::path& shown);
 
 }  // namespace meshmorph

@@ -24,11 +24,13 @@ struct WriteOptions {
   std::optional<MeshFormat> format;
   bool binary = false;  ///< MSH binary / VTU base64-encoded binary arrays
   /// Per-cell scalar arrays (one value per cell of Mesh::cells, blocks concatenated): VTU
-  /// CellData, MSH $ElementData; ignored by Medit.
+  /// CellData, MSH $ElementData, a CGNS CellCenter FlowSolution_t, Exodus II element
+  /// variables; ignored by Medit and SU2.
   std::map<std::string, std::vector<double>> cell_data;
   /// Per-node vector arrays (Mesh::dim × n_nodes each; the displacement and mesh velocity of
-  /// a morph): VTU PointData of 3 components (z = 0 in 2D), MSH $NodeData of 3 components;
-  /// ignored by Medit.
+  /// a morph): VTU PointData of 3 components (z = 0 in 2D), MSH $NodeData of 3 components, a
+  /// CGNS Vertex FlowSolution_t, Exodus II nodal variables (but `displacement`: io/exodus.h);
+  /// ignored by Medit and SU2.
   std::map<std::string, Eigen::MatrixXd> point_vectors;
 };
 
