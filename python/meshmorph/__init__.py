@@ -14,6 +14,46 @@ InputError (a ValueError) with the message the command line prints; a file that 
 read or written raises IoError (an OSError). docs/python.md has the whole interface.
 """
 import json as _json
+import os as _os
+
+
+def _load_core():
+    """Imports the C++ core with libgomp's threads sleeping at barriers unless the user chose.
+
+    libgomp's threads spin at a barrier until the slowest arrives; where another process
+    shares the cores, the thread they wait for is often paused and their spinning keeps it
+    so (a solve 25-45 times slower beside one busy process on 2 cores: bench/python_load.py).
+    libgomp reads OMP_WAIT_POLICY once, when it loads with the core: it is set to "passive"
+    for that moment, unless the user set it or GOMP_SPINCOUNT, and taken out of the
+    environment again, so that programs the user starts see theirs.
+    """
+    if "OMP_WAIT_POLICY" in _os.environ or "GOMP_SPINCOUNT" in _os.environ:
+        return _import_core()
+    import ctypes
+    try:  # loaded already (by another module): its policy is fixed
+        ctypes.CDLL("libgomp.so.1", mode=_os.RTLD_NOLOAD)
+    except OSError:
+        pass
+    else:
+        import warnings
+        warnings.warn("meshmorph: libgomp was loaded before meshmorph with OMP_WAIT_POLICY unset: its threads "
+                      "spin at barriers, and solves may be many times slower beside another busy process; "
+                      "set OMP_WAIT_POLICY=passive before Python starts, or import meshmorph first "
+                      "(docs/python.md, Threads)", RuntimeWarning, stacklevel=2)
+        return _import_core()
+    _os.environ["OMP_WAIT_POLICY"] = "passive"
+    try:
+        return _import_core()
+    finally:
+        del _os.environ["OMP_WAIT_POLICY"]
+
+
+def _import_core():
+    from . import _meshmorph
+    return _meshmorph
+
+
+_load_core()
 
 from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality, read_mesh, set_log_level
 from ._meshmorph import _convert, _deform, _fit, _morph, _optimize, _untangle
