@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "io/detail/mesh_builder.h"
+#include "meshmorph/fem/validity.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/mesh_io.h"
 
@@ -204,6 +205,12 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
         throw InputError(where + ": group " + (name.empty() ? std::to_string(tag) : "\"" + name + "\"") + " is given twice");
     m.groups.push_back({static_cast<int>(dim), static_cast<std::int32_t>(tag), name});
   }
+  // Curved cells listed in VTK's node order, as meshio holds them, come out nearly all inverted.
+  if (m.order() >= 2)
+    if (const std::size_t bad = count_invalid_cells(m); bad * 10 >= m.n_cells() * 9)
+      throw InputError("Mesh: cells: " + std::to_string(bad) + " of " + std::to_string(m.n_cells()) +
+                       " cells are inverted: their nodes are likely in VTK's order (as meshio holds them), where "
+                       "Mesh(...) takes Gmsh's (docs/node-ordering.md); Mesh.from_meshio converts a meshio mesh");
   return m;
 }
 

@@ -16,6 +16,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "arrays.h"
+#include "conversions.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/deform_case.h"
 #include "meshmorph/app/fit_case.h"
@@ -294,6 +295,7 @@ PYBIND11_MODULE(_meshmorph, m) {
       .def("solve_at", [](Session& s, double t) { return solved(s.solve(s.targets_at(t))); }, py::arg("t"))
       .def("solve_to", [](Session& s, const Array& targets) { return solved(s.solve(s.targets_from(targets))); },
            py::arg("targets"));
+  add_conversions(m);
   m.def("MorphSession", &morph_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
   m.def("UntangleSession", &untangle_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 }

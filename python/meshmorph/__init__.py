@@ -59,6 +59,10 @@ from ._meshmorph import InputError, IoError, Mesh, __version__, elevate, quality
 from ._meshmorph import _convert, _deform, _fit, _morph, _optimize, _untangle
 from ._meshmorph import MorphSession as _MorphSession
 from ._meshmorph import UntangleSession as _UntangleSession
+from . import _meshio
+
+Mesh.from_meshio = staticmethod(_meshio.from_meshio)
+Mesh.to_meshio = _meshio.to_meshio
 
 __all__ = ["InputError", "IoError", "Mesh", "Morpher", "Untangler", "convert", "deform", "elevate", "fit", "morph",
            "optimize", "quality", "read_mesh", "set_log_level", "untangle", "__version__"]
