@@ -122,6 +122,13 @@ py::array_t<double> rows_of(const Eigen::MatrixXd& x) {
   return a;
 }
 
+py::array_t<double> points_view(const Eigen::MatrixXd& x, const py::object& owner) {
+  const auto d = static_cast<py::ssize_t>(x.rows());
+  py::array_t<double> a({static_cast<py::ssize_t>(x.cols()), d}, {d * py::ssize_t{sizeof(double)}, py::ssize_t{sizeof(double)}},
+                        x.data(), owner);
+  return read_only(a);
+}
+
 Eigen::MatrixXd matrix_of(const Array& a, int dim, std::size_t n, const std::string& what) {
   const auto shape = [&] {
     std::string s = "(";
@@ -153,8 +160,8 @@ py::list block_dicts(const std::vector<CellBlock>& blocks) {
     py::dict d;
     d["type"] = std::string(name_of(b.type));
     d["order"] = b.order;
-    d["nodes"] = nodes;
-    d["physical"] = array_of(b.physical);
+    d["nodes"] = read_only(nodes);
+    d["physical"] = read_only(array_of(b.physical));
     list.append(d);
   }
   return list;
