@@ -17,6 +17,7 @@
 
 #include "arrays.h"
 #include "conversions.h"
+#include "drawing.h"
 #include "messages.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/deform_case.h"
@@ -336,6 +337,7 @@ PYBIND11_MODULE(_meshmorph, m) {
         return solved(s.solve(s.targets_from(targets), progress));
       }, py::arg("targets"), py::arg("progress") = py::none());
   add_conversions(m);
+  add_drawing(m);
   m.def("MorphSession", &morph_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
   m.def("UntangleSession", &untangle_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 }
