@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "io/detail/mesh_builder.h"
+#include "meshmorph/fem/validity.h"
 #include "meshmorph/error.h"
 #include "meshmorph/io/mesh_io.h"
 
@@ -121,6 +122,13 @@ py::array_t<double> rows_of(const Eigen::MatrixXd& x) {
   return a;
 }
 
+py::array_t<double> points_view(const Eigen::MatrixXd& x, const py::object& owner) {
+  const auto d = static_cast<py::ssize_t>(x.rows());
+  py::array_t<double> a({static_cast<py::ssize_t>(x.cols()), d}, {d * py::ssize_t{sizeof(double)}, py::ssize_t{sizeof(double)}},
+                        x.data(), owner);
+  return read_only(a);
+}
+
 Eigen::MatrixXd matrix_of(const Array& a, int dim, std::size_t n, const std::string& what) {
   const auto shape = [&] {
     std::string s = "(";
@@ -152,8 +160,8 @@ py::list block_dicts(const std::vector<CellBlock>& blocks) {
     py::dict d;
     d["type"] = std::string(name_of(b.type));
     d["order"] = b.order;
-    d["nodes"] = nodes;
-    d["physical"] = array_of(b.physical);
+    d["nodes"] = read_only(nodes);
+    d["physical"] = read_only(array_of(b.physical));
     list.append(d);
   }
   return list;
@@ -204,6 +212,12 @@ Mesh mesh_of(const Array& points, const py::list& cells, const py::list& facets,
         throw InputError(where + ": group " + (name.empty() ? std::to_string(tag) : "\"" + name + "\"") + " is given twice");
     m.groups.push_back({static_cast<int>(dim), static_cast<std::int32_t>(tag), name});
   }
+  // Curved cells listed in VTK's node order, as meshio holds them, come out nearly all inverted.
+  if (m.order() >= 2)
+    if (const std::size_t bad = count_invalid_cells(m); bad * 10 >= m.n_cells() * 9)
+      throw InputError("Mesh: cells: " + std::to_string(bad) + " of " + std::to_string(m.n_cells()) +
+                       " cells are inverted: their nodes are likely in VTK's order (as meshio holds them), where "
+                       "Mesh(...) takes Gmsh's (docs/node-ordering.md); Mesh.from_meshio converts a meshio mesh");
   return m;
 }
 

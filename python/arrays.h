@@ -18,6 +18,15 @@ namespace py = pybind11;
 /// A float64 array as the module takes one: C-contiguous, other dtypes converted.
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+/// `a`, no longer writeable.
+template <class T>
+py::array_t<T> read_only(py::array_t<T> a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+/// A read-only n × d view of the d × n matrix `x`, which `owner` holds (kept alive by the view).
+py::array_t<double> points_view(const Eigen::MatrixXd& x, const py::object& owner);
 /// The n × d array of a d × n matrix.
 py::array_t<double> rows_of(const Eigen::MatrixXd& x);
 /// The d × n matrix of an n × d array; InputError naming `what` for another shape or a

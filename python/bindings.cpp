@@ -16,6 +16,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "arrays.h"
+#include "conversions.h"
+#include "drawing.h"
+#include "messages.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/deform_case.h"
 #include "meshmorph/app/fit_case.h"
@@ -27,7 +30,6 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/elevate.h"
 #include "meshmorph/io/mesh_io.h"
-#include "meshmorph/log.h"
 
 namespace meshmorph {
 namespace {
@@ -85,14 +87,21 @@ std::pair<std::string, Mesh> reported(RunOutput&& run, const RunTimings& timings
 /// A method's whole case on a mesh in memory (morph(), untangle(), fit(), deform(),
 /// optimize()): the runner of the command line, its report as JSON text and the moved mesh.
 template <class Runner>
-std::pair<std::string, Mesh> run_case(const Mesh& mesh, const std::string& case_json, const std::string& name, int threads) {
+std::pair<std::string, Mesh> run_case(const Mesh& mesh, const std::string& case_json, const std::string& name, int threads,
+                                      const py::object& progress) {
   const RunTimings timings;
   const CaseFile c = case_of(case_json, name, threads);
   Mesh copy = mesh;  // with the GIL: another thread may set mesh.points
-  py::gil_scoped_release release;
-  const ScopedThreads scoped(threads);
-  Runner runner(c, std::move(copy), threads);
-  return reported(runner.run(), timings);
+  ProgressScope scope(progress);
+  std::pair<std::string, Mesh> out;
+  {
+    py::gil_scoped_release release;
+    const ScopedThreads scoped(threads);
+    Runner runner(c, std::move(copy), threads);
+    out = reported(runner.run(), timings);
+  }
+  scope.rethrow();
+  return out;
 }
 
 /// A morph or untangle case on a mesh in memory, solved as often as the caller asks (the
@@ -120,14 +129,20 @@ class Session {
   }
   /// One solve towards `target`: the report as JSON text and the positions it ends at.
   /// Without the GIL; solves of one session from several threads take turns.
-  std::pair<std::string, Eigen::MatrixXd> solve(const Eigen::MatrixXd& target) {
-    py::gil_scoped_release release;
-    std::lock_guard lock(mutex_);
-    const ScopedThreads scoped(threads_);
-    const RunTimings timings;
-    auto [report, moved] = reported(run(target), timings);
-    x_ = std::move(moved.x);
-    return {std::move(report), x_};
+  std::pair<std::string, Eigen::MatrixXd> solve(const Eigen::MatrixXd& target, const py::object& progress) {
+    ProgressScope scope(progress);
+    std::pair<std::string, Eigen::MatrixXd> out;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard lock(mutex_);
+      const ScopedThreads scoped(threads_);
+      const RunTimings timings;
+      auto [report, moved] = reported(run(target), timings);
+      x_ = std::move(moved.x);
+      out = {std::move(report), x_};
+    }
+    scope.rethrow();
+    return out;
   }
 
  protected:
@@ -178,6 +193,25 @@ std::unique_ptr<Session> untangle_session(const Mesh& mesh, const std::string& c
 // A solve's report text and its positions as (str, array).
 py::tuple solved(const std::pair<std::string, Eigen::MatrixXd>& r) { return py::make_tuple(r.first, rows_of(r.second)); }
 
+// Mesh.write: the format from the extension.
+void write_mesh_file(const Mesh& mesh, const std::filesystem::path& path, bool binary) {
+  if (binary && path.extension() == ".mesh") throw InputError(path.string() + ": binary is not available for Medit .mesh (ASCII only)");
+  if (binary && path.extension() == ".su2") throw InputError(path.string() + ": binary is not available for SU2 .su2 (ASCII only)");
+  WriteOptions o;
+  o.binary = binary;
+  write_mesh(path, mesh, o);
+}
+
+std::string mesh_repr(const Mesh& mesh) {
+  std::string cells;
+  for (const CellBlock& b : mesh.cells)
+    cells += (cells.empty() ? "" : ", ") + std::to_string(b.n_cells()) + " " + std::string(name_of(b.type)) + " P" + std::to_string(b.order);
+  std::string groups;
+  for (const PhysicalGroup& g : mesh.groups)
+    groups += (groups.empty() ? "; groups " : ", ") + (g.name.empty() ? std::string() : g.name + " ") + "(" + std::to_string(g.tag) + ")";
+  return "<meshmorph.Mesh " + std::to_string(mesh.dim) + "D: " + std::to_string(mesh.n_nodes()) + " nodes, " + cells + groups + ">";
+}
+
 }  // namespace
 }  // namespace meshmorph
 
@@ -192,21 +226,36 @@ PYBIND11_MODULE(_meshmorph, m) {
   py::register_exception<IoError>(m, "IoError", PyExc_OSError);
   m.attr("__version__") = meshmorph_version();
 
-  py::class_<Mesh>(m, "Mesh")
+  py::class_<Mesh>(m, "Mesh", "An unstructured mesh of 2D or 3D cells of order 1-4, its nodes in Gmsh's order "
+                              "(docs/python.md, Meshes).")
       .def(py::init(&mesh_of), py::arg("points"), py::arg("cells"), py::arg("facets") = py::list(),
            py::arg("groups") = py::list(),
            "A mesh from arrays: points (n_nodes, dim), cell and facet blocks as Mesh.cell_blocks gives them "
-           "(type, order, nodes in Gmsh's order, physical tags), groups as Mesh.groups.")
-      .def_readonly("dim", &Mesh::dim)
-      .def_property_readonly("order", &Mesh::order)
-      .def_property_readonly("n_nodes", &Mesh::n_nodes)
-      .def_property_readonly("n_cells", &Mesh::n_cells)
+           "(type, order, nodes in Gmsh's order, physical tags), groups as Mesh.groups. Curved cells nearly all "
+           "inverted are refused: their nodes are likely in VTK's order, as meshio holds them (Mesh.from_meshio "
+           "converts).")
+      .def_readonly("dim", &Mesh::dim, "Spatial dimension, 2 or 3.")
+      .def_property_readonly("order", &Mesh::order, "The highest order of the cells (1 straight-sided).")
+      .def_property_readonly("n_nodes", &Mesh::n_nodes, "Number of nodes.")
+      .def_property_readonly("n_cells", &Mesh::n_cells, "Number of cells (of dimension dim; facets not counted).")
       .def_property(
-          "points", [](const Mesh& mesh) { return rows_of(mesh.x); },
-          [](Mesh& mesh, const Array& a) { mesh.x = points_of(a, mesh.dim, mesh.n_nodes(), "Mesh.points"); })
-      .def_property_readonly("node_tags", [](const Mesh& mesh) { return array_of(mesh.node_tags); })
-      .def_property_readonly("cell_blocks", [](const Mesh& mesh) { return block_dicts(mesh.cells); })
-      .def_property_readonly("facet_blocks", [](const Mesh& mesh) { return block_dicts(mesh.facets); })
+          "points", [](const py::object& self) { return points_view(self.cast<const Mesh&>().x, self); },
+          // Into the same storage: the views handed out see the new coordinates.
+          [](Mesh& mesh, const Array& a) {
+            const Eigen::MatrixXd x = points_of(a, mesh.dim, mesh.n_nodes(), "Mesh.points");
+            mesh.x = x;
+          },
+          "The node coordinates, (n_nodes, dim) float64: a read-only view of the mesh's own (it follows the "
+          "mesh; .copy() for an array of one's own). Assigning an array of the same shape, finite, sets them.")
+      .def_property_readonly("node_tags", [](const Mesh& mesh) { return read_only(array_of(mesh.node_tags)); },
+                             "The file's node tags (int64; 1 ... n for a mesh from arrays), a read-only copy.")
+      .def_property_readonly("cell_blocks", [](const Mesh& mesh) { return block_dicts(mesh.cells); },
+                             "The cells, a list of {\"type\", \"order\", \"nodes\", \"physical\"} per block: nodes "
+                             "(n_cells, nodes per cell), 0-based, in Gmsh's order; physical the group tag of each cell "
+                             "(0: none). The arrays are read-only copies.")
+      .def_property_readonly("facet_blocks", [](const Mesh& mesh) { return block_dicts(mesh.facets); },
+                             "The tagged boundary and interface elements (and, in 3D, tagged edges and points) that "
+                             "carry the groups, as cell_blocks.")
       .def_property_readonly("groups",
                              [](const Mesh& mesh) {
                                py::list groups;
@@ -218,35 +267,34 @@ PYBIND11_MODULE(_meshmorph, m) {
                                  groups.append(d);
                                }
                                return groups;
-                             })
+                             },
+                             "The physical groups, a list of {\"name\", \"dim\", \"tag\"}.")
       .def("group_nodes",
-           [](const Mesh& mesh, const std::string& key) {
+           [](const Mesh& mesh, const py::object& group) {
+             if (!py::isinstance<py::str>(group) && (!py::isinstance<py::int_>(group) || py::isinstance<py::bool_>(group)))
+               throw py::type_error("Mesh.group_nodes: expected a group name (str) or number (int), found " +
+                                    std::string(py::str(py::type::of(group).attr("__name__"))));
+             const std::string key = py::str(group);
              const std::optional<PhysicalGroup> g = mesh.find_group(key);
              if (!g) throw InputError("Mesh.group_nodes: no physical group \"" + key + "\" in the mesh");
-             return array_of(mesh.group_nodes(*g));
+             return read_only(array_of(mesh.group_nodes(*g)));
            },
-           py::arg("group"), "0-based indices of the nodes of a physical group (name, or number as a string).")
-      .def("write",
-           [](const Mesh& mesh, const std::filesystem::path& path, bool binary) {
-             if (binary && path.extension() == ".mesh")
-               throw InputError(path.string() + ": binary is not available for Medit .mesh (ASCII only)");
-             if (binary && path.extension() == ".su2")
-               throw InputError(path.string() + ": binary is not available for SU2 .su2 (ASCII only)");
-             WriteOptions o;
-             o.binary = binary;
-             write_mesh(path, mesh, o);
-           },
-           py::arg("path"), py::arg("binary") = false,
-           "Writes the mesh atomically; the format comes from the extension (.msh: MSH 4.1, .vtu, .mesh, .su2), "
-           "or a time folder of the OpenFOAM case the mesh was read from (case/0.001: its polyMesh/points).")
+           py::arg("group"), "0-based indices of the nodes of a physical group, by name or number (2 or \"2\"); "
+                             "a read-only array.")
+      .def("write", &write_mesh_file, py::arg("path"), py::arg("binary") = false,
+           "Writes the mesh atomically; the format comes from the extension (.msh: MSH 4.1, .vtu, .mesh, .su2, "
+           ".cgns, .exo/.e/.ex2), or a time folder of the OpenFOAM case the mesh was read from (case/0.001: its "
+           "polyMesh/points). binary: binary MSH, base64 VTU.")
       .def("copy", [](const Mesh& mesh) { return mesh; }, "An independent copy.")
       .def("__copy__", [](const Mesh& mesh) { return mesh; })
-      .def("__deepcopy__", [](const Mesh& mesh, const py::dict&) { return mesh; }, py::arg("memo"));
+      .def("__deepcopy__", [](const Mesh& mesh, const py::dict&) { return mesh; }, py::arg("memo"))
+      .def("__repr__", &mesh_repr);
 
   m.def("read_mesh", [](const std::filesystem::path& path) {
     py::gil_scoped_release release;
     return read_mesh(path);
-  }, py::arg("path"), "Reads .msh (2.2 or 4.1, ASCII or binary), .vtu, .mesh, .su2 or an OpenFOAM case folder.");
+  }, py::arg("path"), "Reads a mesh: .msh (2.2 or 4.1, ASCII or binary), .vtu, .mesh, .su2, .cgns, .exo/.e/.ex2, or an "
+                       "OpenFOAM case, polyMesh or time folder. Nodes come in Gmsh's order.");
   m.def("elevate", [](const Mesh& mesh, int order) {
     int highest = 4;
     for (const CellBlock& b : mesh.cells) highest = std::min(highest, max_order_of(b.type));
@@ -260,26 +308,18 @@ PYBIND11_MODULE(_meshmorph, m) {
   }, py::arg("mesh"), py::arg("reference") = py::none(),
         "Validity and quality of every cell (`meshmorph quality`): against `reference` too (quality 1/eta "
         "of paper 000) when it is given, a mesh with the same cells.");
-  m.def("set_log_level", [](const std::string& level) {
-    if (level == "quiet") return set_log_sink({});
-    const LogLevel max = level == "detail" ? LogLevel::Detail : level == "progress" ? LogLevel::Progress : LogLevel::Info;
-    if (level != "detail" && level != "progress" && level != "info")
-      throw InputError("set_log_level: expected \"quiet\", \"info\", \"progress\" or \"detail\", found \"" + level + "\"");
-    set_log_sink([](LogLevel, std::string_view message) { std::fprintf(stderr, "meshmorph: %.*s\n", static_cast<int>(message.size()), message.data()); },
-                 max);
-  }, py::arg("level"), "Where the library's messages go: \"quiet\" (none, the default), \"info\", \"progress\" "
-                        "(a line per iteration) or \"detail\" (Newton steps), on stderr.");
+  add_messages(m);
 
-  m.def("_morph", [](const Mesh& mesh, const std::string& text, int threads) { return run_case<MorphRunner>(mesh, text, "morph", threads); },
-        py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
-  m.def("_untangle", [](const Mesh& mesh, const std::string& text, int threads) { return run_case<UntangleRunner>(mesh, text, "untangle", threads); },
-        py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
-  m.def("_fit", [](const Mesh& mesh, const std::string& text, int threads) { return run_case<FitRunner>(mesh, text, "fit", threads); },
-        py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
-  m.def("_deform", [](const Mesh& mesh, const std::string& text, int threads) { return run_case<DeformRunner>(mesh, text, "deform", threads); },
-        py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
-  m.def("_optimize", [](const Mesh& mesh, const std::string& text, int threads) { return run_case<OptimizeRunner>(mesh, text, "optimize", threads); },
-        py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
+  const auto run = [&m]<class Runner>(const char* name) {
+    m.def((std::string("_") + name).c_str(), [name](const Mesh& mesh, const std::string& text, int threads, const py::object& progress) {
+      return run_case<Runner>(mesh, text, name, threads, progress);
+    }, py::arg("mesh"), py::arg("case_json"), py::arg("threads"), py::arg("progress") = py::none());
+  };
+  run.operator()<MorphRunner>("morph");
+  run.operator()<UntangleRunner>("untangle");
+  run.operator()<FitRunner>("fit");
+  run.operator()<DeformRunner>("deform");
+  run.operator()<OptimizeRunner>("optimize");
   m.def("_convert", [](const std::filesystem::path& input, const std::filesystem::path& output, int order, bool binary, bool msh22) {
     const WriteOptions options = convert_options(output.string(), binary, msh22);
     py::gil_scoped_release release;
@@ -290,10 +330,14 @@ PYBIND11_MODULE(_meshmorph, m) {
 
   py::class_<Session>(m, "Session")
       .def_property_readonly("mesh", [](const Session& s) { return s.input(); })  // a copy: the reference stays
-      .def_property_readonly("points", [](Session& s) { return rows_of(s.points()); })
-      .def("solve_at", [](Session& s, double t) { return solved(s.solve(s.targets_at(t))); }, py::arg("t"))
-      .def("solve_to", [](Session& s, const Array& targets) { return solved(s.solve(s.targets_from(targets))); },
-           py::arg("targets"));
+      .def_property_readonly("points", [](Session& s) { return read_only(rows_of(s.points())); })
+      .def("solve_at", [](Session& s, double t, const py::object& progress) { return solved(s.solve(s.targets_at(t), progress)); },
+           py::arg("t"), py::arg("progress") = py::none())
+      .def("solve_to", [](Session& s, const Array& targets, const py::object& progress) {
+        return solved(s.solve(s.targets_from(targets), progress));
+      }, py::arg("targets"), py::arg("progress") = py::none());
+  add_conversions(m);
+  add_drawing(m);
   m.def("MorphSession", &morph_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
   m.def("UntangleSession", &untangle_session, py::arg("mesh"), py::arg("case_json"), py::arg("threads"));
 }

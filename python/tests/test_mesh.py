@@ -38,10 +38,11 @@ class MeshTest(unittest.TestCase):
         self.assertEqual((block["type"], block["order"], block["nodes"].shape), ("triangle", 1, (2366, 3)))
         self.assertEqual(m.node_tags.shape, (1265,))
 
-    def test_points_are_copies_and_round_trip_through_every_format(self):
+    def test_points_are_read_only_and_round_trip_through_every_format(self):
         m = self.mesh
         moved = m.points * 2.0 + np.array([1.0, -3.0])
-        m.points[0, 0] = 99.0  # a copy: the mesh is unchanged
+        with self.assertRaises(ValueError):  # a read-only view: no edit is lost silently
+            m.points[0, 0] = 99.0
         self.assertNotEqual(m.points[0, 0], 99.0)
         m.points = moved
         self.assertTrue(np.array_equal(m.points, moved))
@@ -78,7 +79,7 @@ class MeshTest(unittest.TestCase):
         self.assertAlmostEqual(meshmorph.quality(turned, self.mesh)["min_quality"], 1.0, places=12)
         # Folding one node across its neighbours inverts cells.
         folded = self.mesh.copy()
-        p = folded.points
+        p = folded.points.copy()
         interior = np.setdiff1d(np.arange(p.shape[0]), np.union1d(folded.group_nodes("inner"), folded.group_nodes("outer")))
         p[interior[0]] = -p[interior[0]]
         folded.points = p
@@ -211,7 +212,7 @@ class MeshErrorTest(unittest.TestCase):
     def test_points_of_the_wrong_shape_or_not_finite(self):
         with self.assertRaisesRegex(meshmorph.InputError, r"Mesh.points: expected an array of shape \(1265, 2\), found \(1265, 3\)"):
             self.mesh.points = np.zeros((1265, 3))
-        bad = self.mesh.points
+        bad = self.mesh.points.copy()
         bad[7, 1] = np.nan
         with self.assertRaisesRegex(meshmorph.InputError, "Mesh.points: row 7 is not finite"):
             self.mesh.points = bad
@@ -241,7 +242,7 @@ class MeshErrorTest(unittest.TestCase):
         with self.assertRaisesRegex(meshmorph.InputError, "elevate: expected an order from 1 to 3, found 4"):
             meshmorph.elevate(quads, 4)
         with self.assertRaisesRegex(meshmorph.InputError, r"Mesh.points: row 3: coordinate 2e\+150 is beyond"):
-            p = m.points
+            p = m.points.copy()
             p[3, 0] = 2e150
             m.points = p
 

@@ -216,7 +216,7 @@ class MorpherErrorTest(unittest.TestCase):
 
     def test_an_inverted_mesh(self):
         folded = self.annulus.copy()
-        p = folded.points
+        p = folded.points.copy()
         interior = np.setdiff1d(np.arange(p.shape[0]), np.union1d(folded.group_nodes("inner"), folded.group_nodes("outer")))
         p[interior[0]] = -p[interior[0]]
         folded.points = p
@@ -231,7 +231,7 @@ class MorpherErrorTest(unittest.TestCase):
         m = meshmorph.Morpher(self.annulus, ROTATE)
         with self.assertRaisesRegex(meshmorph.InputError, "Morpher.solve: give t or targets, not both"):
             m.solve(0.5, targets=self.annulus.points)
-        targets = self.annulus.points
+        targets = self.annulus.points.copy()
         targets[self.annulus.group_nodes("inner")[0]] = [1e300, 0]
         with self.assertRaisesRegex(meshmorph.InputError, r"targets: row \d+: coordinate 1e\+300 is beyond"):
             m.solve(targets=targets)
@@ -242,7 +242,7 @@ class MorpherErrorTest(unittest.TestCase):
             m.solve(1.5)
         with self.assertRaisesRegex(meshmorph.InputError, r"targets: expected an array of shape \(1265, 2\), found \(4,\)"):
             m.solve(targets=np.zeros(4))
-        targets = self.annulus.points
+        targets = self.annulus.points.copy()
         targets[3, 0] = np.inf
         with self.assertRaisesRegex(meshmorph.InputError, "targets: row 3 is not finite"):
             m.solve(targets=targets)
