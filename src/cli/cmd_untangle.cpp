@@ -23,7 +23,7 @@ Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out) {
   const std::optional<CaseFile> c = case_or_mesh(a.input);
   const CaseFile run_case = with_flags(c ? *c : bare_case(a.input), a);
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
-  const RunFiles files = run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_untangled");
+  const RunFiles files = run_files(a.output, a.report, a.plot, c ? &*c : nullptr, a.input, "_untangled");
 
   SeriesOutput series(runner.input(), c ? &*c : nullptr, files);
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {
