@@ -142,9 +142,9 @@ std::vector<bool> worst_cells(const std::vector<double>& values, double fraction
   double below = -HUGE_VAL, top = -HUGE_VAL;
   if (fraction > 0.0 && !finite.empty()) {
     std::sort(finite.begin(), finite.end());
-    // Cells at the best value are not the worst, though they are 5 % or more: a field of one
-    // value outlines no cell.
-    top = finite.back();
+    // Cells at the best value (to rounding) are not the worst, though they are 5 % or more: a
+    // field of one value outlines no cell.
+    top = finite.back() - 1e-9 * std::abs(finite.back());
     const double at = fraction * static_cast<double>(finite.size() - 1);
     const auto low = static_cast<std::size_t>(std::floor(at));
     const std::size_t high = std::min(low + 1, finite.size() - 1);

@@ -29,8 +29,8 @@ struct CellField {
 CellField cell_field(const Mesh& mesh, std::string_view field, const Mesh* reference);
 
 /// The cells to outline: those with a value at or below the `fraction` quantile of the finite
-/// values (NumPy's linear interpolation, as meshmorph.plot) and below their maximum, at or
-/// below 0, or not finite.
+/// values (NumPy's linear interpolation, as meshmorph.plot) and below their maximum (by more
+/// than 1e-9 of it), at or below 0, or not finite.
 std::vector<bool> worst_cells(const std::vector<double>& values, double fraction);
 
 /// A polygon to fill in the colour of `cell`: a 2D cell, or a boundary face of a 3D one, in
