@@ -75,9 +75,11 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
     const MatT<d> W_ideal_inv = ideal_jacobian<d>(block.type, mean_volume > 0.0 ? mean_volume : 1.0).inverse();
     for (std::size_t c = 0; c < block.n_cells(); ++c) {
       const auto X = gather<d>(input.x, block.cell(c), block.n_nodes_per_cell());
-      bool regular = reference == UntangleReference::Regular;
-      for (int q = 0; q < Q && reference == UntangleReference::InputWhereValid && !regular; ++q)
-        regular = !((X * table->grad(q)).determinant() > 0.0);
+      // InputWhereValid: the cells valid by the Bernstein bounds (a fold between the points
+      // would otherwise keep its input shape as target).
+      const bool regular = reference == UntangleReference::Regular ||
+                           (reference == UntangleReference::InputWhereValid &&
+                            !(min_jacobian_det(block.type, block.order, X) > 0.0));
       for (int q = 0; q < Q; ++q) {
         QuadratureTarget<d>& t = bt.points[c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)];
         t.weight = w[q];

@@ -21,8 +21,8 @@ enum class UntangleReference {
   /// The regular simplex (square, cube), one size for the whole mesh (the input's mean cell
   /// volume): the paper's tests. Elements are driven towards equilateral shape.
   Regular,
-  /// The input element for the cells valid at every point of the functional, the regular
-  /// one for the others: a repair that keeps the valid cells as they are where it can.
+  /// The input element for the valid cells (Bernstein bounds), the regular one for the
+  /// others: a repair that keeps the valid cells as they are where it can.
   InputWhereValid,
 };
 
