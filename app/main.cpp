@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
   meshmorph::add_check_command(app, run);
   meshmorph::add_method_commands(app, run, common.threads);
   meshmorph::add_optimize_command(app, run, common.threads);
+  meshmorph::add_plot_command(app, run);
   app.require_subcommand(1);
 
   try {

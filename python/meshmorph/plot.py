@@ -48,10 +48,12 @@ def cell_field(mesh, field=None, reference=None):
 
 
 def _worst(values, mark):
-    """The cells to outline: the `mark` fraction with the lowest values, and those at 0 or below."""
+    """The cells to outline: the `mark` fraction with the lowest values, and those at 0 or below;
+    none at the best value (a uniform field outlines nothing), as `meshmorph plot` draws them."""
     worst = values <= 0.0
     if mark > 0 and len(values):
-        worst |= values <= np.quantile(values, mark)
+        top = values.max()
+        worst |= (values <= np.quantile(values, mark)) & (values < top - 1e-9 * abs(top))
     return worst
 
 

@@ -20,10 +20,10 @@ Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out) {
   const RunTimings timings;
   const CaseFile c = with_flags(read_case_file(a.input), a);
   const FitRunner runner(c, read_mesh(c.mesh), threads);
-  const RunFiles files = run_files(a.output, a.report, &c, a.input);
+  const RunFiles files = run_files(a.output, a.report, a.plot, &c, a.input);
 
   RunOutput run = runner.run();
-  write_run(run, files, timings);
+  write_run(run, files, timings, runner.setup().mesh);
 
   const Report& report = run.report;
   const FitSetup& setup = runner.setup();

@@ -22,7 +22,7 @@ Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out) {
   const RunTimings timings;
   const CaseFile c = with_flags(read_case_file(a.input), a);
   MorphRunner runner(c, read_mesh(c.mesh), threads);
-  const RunFiles files = run_files(a.output, a.report, &c, a.input);
+  const RunFiles files = run_files(a.output, a.report, a.plot, &c, a.input);
 
   SeriesOutput series(runner.input(), &c, files);
   MorphOutput run = runner.run([&](int step, const Mesh& mesh) {

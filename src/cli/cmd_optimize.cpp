@@ -35,10 +35,10 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   // The rest of the run, its summary included, on the threads the runner picked for this size.
   if (runner.threads() > 0) omp_set_num_threads(runner.threads());
   // Every input is read by now.
-  const detail::RunFiles files = detail::run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_optimized");
+  const detail::RunFiles files = detail::run_files(a.output, a.report, a.plot, c ? &*c : nullptr, a.input, "_optimized");
 
   RunOutput run = runner.run();
-  detail::write_run(run, files, timings);
+  detail::write_run(run, files, timings, runner.input());
 
   const nlohmann::ordered_json& extra = run.extra;
   const std::size_t inverted = runner.initial_inverted();

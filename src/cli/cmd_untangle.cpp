@@ -32,7 +32,7 @@ Outcome run_untangle(const UntangleArgs& a, int threads, std::ostream& out) {
   set_option(run_case, "eps_q", a.eps_q, a.eps_q >= 0.0);
   set_option(run_case, "boundary", a.boundary, !a.boundary.empty());
   UntangleRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads);
-  const RunFiles files = run_files(a.output, a.report, c ? &*c : nullptr, a.input, "_untangled");
+  const RunFiles files = run_files(a.output, a.report, a.plot, c ? &*c : nullptr, a.input, "_untangled");
 
   SeriesOutput series(runner.input(), c ? &*c : nullptr, files);
   RunOutput run = runner.run([&](int step, const Mesh& mesh) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cli/detail/output_files.h"
 
+#include "cli/detail/plot_file.h"
 #include "cli/detail/series_output.h"
 
 #include <unistd.h>
@@ -62,7 +63,7 @@ void check_outputs(const std::vector<OutputFile>& outputs) {
 }
 
 void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
-                   const std::optional<std::filesystem::path>& report) {
+                   const std::optional<std::filesystem::path>& report, const std::optional<std::filesystem::path>& plot) {
   const std::string where = c ? c->file.string() + ": " : std::string();
   std::vector<OutputFile> outputs;
   // The command line's -o may name the output that the case leaves out.
@@ -77,6 +78,7 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
     }
   }
   if (report) outputs.push_back({where + (c ? "report" : "--report"), *report, false});
+  if (plot) outputs.push_back({"--plot", *plot, false});
   check_outputs(outputs);
 }
 
@@ -137,8 +139,8 @@ std::optional<CaseFile> case_or_mesh(const std::string& input) {
   return std::nullopt;
 }
 
-RunFiles run_files(const std::string& output, const std::string& report, const CaseFile* c, const std::string& input,
-                   const std::string& suffix) {
+RunFiles run_files(const std::string& output, const std::string& report, const std::string& plot, const CaseFile* c,
+                   const std::string& input, const std::string& suffix) {
   RunFiles f;
   if (!output.empty()) f.output = output;
   else if (c) f.output = c->output;
@@ -148,15 +150,23 @@ RunFiles run_files(const std::string& output, const std::string& report, const C
   }
   if (!report.empty()) f.report = report;
   else if (c) f.report = c->report;
+  if (!plot.empty()) {
+    check_plot_path(plot, "--plot");
+    f.plot = plot;
+  }
   if (c) f.case_file = input;
-  check_outputs(c, f.output, f.report);
+  check_outputs(c, f.output, f.report, f.plot);
   return f;
 }
 
-void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings,
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings, const Mesh& input,
                const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   run.report.case_file = files.case_file;
   write_result_mesh(run, files.output, point_vectors);
+  if (run.report.converged && files.plot) {
+    write_comparison(*files.plot, input, run.moved);
+    log_info("wrote " + files.plot->string());
+  }
   stamp_times(run.report, timings);
   if (files.report) write_report(*files.report, run.report, run.extra);
 }

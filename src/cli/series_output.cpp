@@ -79,10 +79,10 @@ void SeriesOutput::finish(RunOutput& run, const RunTimings& timings) {
     if (writes_mesh(run)) write_one_file(run);
     RunFiles report_only = files_;
     report_only.output.reset();
-    write_run(run, report_only, timings);
+    write_run(run, report_only, timings, input_);
     return;
   }
-  write_run(run, files_, timings, fields(run.moved.x, previous_));
+  write_run(run, files_, timings, input_, fields(run.moved.x, previous_));
   if (!each_step_ || !files_.output) return;
   const std::optional<std::filesystem::path> pvd = series_path(*files_.output);
   if (!pvd) return;

@@ -41,6 +41,9 @@ void add_method_commands(CLI::App& app, Command& run, const int& threads);
 /// `meshmorph optimize MESH | CASE.json [-o OUT] [--report FILE] [--metric M] [--target T]
 /// [--boundary fixed|slide]`: TMOP mesh optimization (docs/optimize.md).
 void add_optimize_command(CLI::App& app, Command& run, const int& threads);
+/// `meshmorph plot MESH [-o FILE.png|.svg] [--field F] [--reference MESH]`: a picture of the
+/// mesh coloured by a cell field, with its histogram (docs/cli.md).
+void add_plot_command(CLI::App& app, Command& run);
 /// `meshmorph check CASE.json`: validates a case file against its mesh; writes nothing.
 void add_check_command(CLI::App& app, Command& run);
 

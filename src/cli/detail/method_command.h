@@ -17,6 +17,7 @@ struct MethodArgs {
   std::string output;  ///< -o: over the case's "output"
   std::string report;  ///< --report: over the case's "report"
   bool reorient = false;  ///< --reorient: as the case's "reorient"
+  std::string plot;       ///< --plot: input and output side by side (write_comparison)
 };
 
 /// The case with the flags of the command line over its keys.
@@ -46,6 +47,8 @@ CLI::App* add_method_command(CLI::App& app, Command& run, const int& threads, co
   cmd->add_option("--report", args->report, "Report JSON (overrides the case's \"report\")")->type_name("FILE");
   cmd->add_flag("--reorient", args->reorient,
                 "List cells that are mirrored against their neighbours the right way round instead of refusing the mesh");
+  cmd->add_option("--plot", args->plot, "Also draw the input and the output side by side, where the output is written")
+      ->type_name("FILE.png|.svg");
   cmd->callback([args, body, &run, &threads] {
     run = [args, body, &threads](std::ostream& out) { return body(*args, threads, out); };
   });

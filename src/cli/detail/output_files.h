@@ -35,10 +35,11 @@ struct OutputFile {
 void check_outputs(const std::vector<OutputFile>& outputs);
 
 /// check_outputs for a method command: its mesh `output` (and, with `output_each_step`, the
-/// step meshes) and its `report`, labelled by the case file's keys, or by the command-line
-/// options where `c` is null (a bare mesh).
+/// step meshes), its `report` and its `plot` (--plot), labelled by the case file's keys, or by
+/// the command-line options where `c` is null (a bare mesh).
 void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>& output,
-                   const std::optional<std::filesystem::path>& report);
+                   const std::optional<std::filesystem::path>& report,
+                   const std::optional<std::filesystem::path>& plot = std::nullopt);
 
 /// How a method's mesh is written: its per-cell quality as cell data, `point_vectors` as point data.
 WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Eigen::MatrixXd>& point_vectors);
@@ -61,21 +62,25 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
 std::optional<CaseFile> case_or_mesh(const std::string& input);
 
 /// The files a method command writes: its mesh (-o, else the case's "output"; for a bare
-/// mesh, NAME<suffix>.EXT beside it when `suffix` is given) and its report (--report, else the
-/// case's "report"), and the case file (null for a bare mesh) that the report names.
+/// mesh, NAME<suffix>.EXT beside it when `suffix` is given), its report (--report, else the
+/// case's "report") and its picture (--plot), and the case file (null for a bare mesh) that
+/// the report names.
 struct RunFiles {
   std::optional<std::filesystem::path> output;
   std::optional<std::filesystem::path> report;
+  std::optional<std::filesystem::path> plot;
   std::optional<std::string> case_file;
 };
 
-/// The run's files, checked by check_outputs: call it once every input is read.
-RunFiles run_files(const std::string& output, const std::string& report, const CaseFile* c, const std::string& input,
-                   const std::string& suffix = "");
+/// The run's files, checked by check_outputs (and the picture's extension, check_plot_path):
+/// call it once every input is read.
+RunFiles run_files(const std::string& output, const std::string& report, const std::string& plot, const CaseFile* c,
+                   const std::string& input, const std::string& suffix = "");
 
-/// Writes a run's mesh (write_result_mesh) and report (write_report, with `case`, `seconds`
-/// and `timings` filled, the mesh's writing included) where `files` ask for them.
-void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings,
+/// Writes a run's mesh (write_result_mesh), its picture beside `input` (write_comparison)
+/// where the goal was reached, and its report (write_report, with `case`, `seconds` and
+/// `timings` filled, the writing of the others included) where `files` ask for them.
+void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings, const Mesh& input,
                const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 /// "timings  assembly 0.41 s, validity 0.05 s, ...": the seconds by phase, for --verbose.
