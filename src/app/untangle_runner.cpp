@@ -45,13 +45,12 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
     start(false);
     return;
   }
-  // The surfaces: the input's own facets for the boundary nodes no entry names, and in
-  // "slide" the level set of each `project` group, which its nodes then move along.
-  std::vector<std::uint8_t> may_slide(input_.n_nodes(), 0);
-  for (std::int32_t node : boundary_nodes(input_, topology_)) may_slide[static_cast<std::size_t>(node)] = 1;
+  // The input's own facets carry the boundary nodes no entry names, and in "slide" each
+  // `project` group moves along its level set.
+  may_slide_.assign(input_.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(input_, topology_)) may_slide_[static_cast<std::size_t>(node)] = 1;
   for (const BoundaryCondition& b : c.boundary)
-    for (std::int32_t node : input_.group_nodes(*input_.find_group(b.group))) may_slide[static_cast<std::size_t>(node)] = 0;
-  surfaces_ = untangle_surfaces(input_, topology_, may_slide, boundary_.feature_angle);
+    for (std::int32_t node : input_.group_nodes(*input_.find_group(b.group))) may_slide_[static_cast<std::size_t>(node)] = 0;
   if (boundary_.mode == "slide") {
     LevelSetOptions lso;
     lso.source = where_;
@@ -59,22 +58,18 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
     for (const BoundaryCondition& b : c.boundary)
       if (const auto* project = std::get_if<ProjectMotion>(&b.motion))
         surfaces_.push_back({LevelSetFunction(project->target, input_.dim, lso), input_.group_nodes(*input_.find_group(b.group))});
-  }
-  for (const FitTerm& t : surfaces_)
-    for (std::int32_t node : t.nodes) bc_.role[static_cast<std::size_t>(node)] = NodeRole::Free;
-  if (boundary_.mode == "slide") {
     boundary_why_ = "asked for";
     start(true);
     return;
   }
-  // auto: slide from the start where inverted cells have only interior nodes free.
+  // auto: the boundary slides where inverted cells have only interior nodes free.
   Mesh placed = input_;
   placed.x = motion_->at(1.0);
   const std::size_t bound = boundary_bound_inverted(placed, motion_->targets());
   boundary_why_ = bound > 0 ? std::to_string(bound) + " inverted cells have all their corners on the boundary"
                             : "the interior untangles the mesh";
-  start(bound > 0 && !surfaces_.empty());
-  local_ = sliding_ && steps_ == 1 && motion_->targets().nodes_with(NodeRole::Prescribed).empty();
+  local_ = bound > 0 && steps_ == 1 && motion_->targets().nodes_with(NodeRole::Prescribed).empty();
+  start(bound > 0 && !local_);
 }
 
 UntangleRunner::~UntangleRunner() = default;
@@ -82,6 +77,13 @@ UntangleRunner::~UntangleRunner() = default;
 void UntangleRunner::start(bool slide) {
   sliding_ = slide;
   untangler_.reset();
+  if (slide && !facet_surfaces_) {
+    facet_surfaces_ = true;
+    for (FitTerm& t : untangle_surfaces(input_, topology_, topology_.boundary_facets, may_slide_, boundary_.feature_angle))
+      surfaces_.push_back(std::move(t));
+    for (const FitTerm& t : surfaces_)
+      for (std::int32_t node : t.nodes) bc_.role[static_cast<std::size_t>(node)] = NodeRole::Free;
+  }
   try {
     untangler_ = slide ? std::make_unique<Untangler>(input_, topology_, bc_, options_, surfaces_)
                        : std::make_unique<Untangler>(input_, topology_, motion_->targets(), options_);
@@ -114,6 +116,7 @@ RunOutput UntangleRunner::finish(RunOutput out, const BoundaryTargets& bc) const
 
 RunOutput UntangleRunner::run_local() {
   RunOutput out;
+  sliding_ = true;
   // A patch either repairs in tens of Newton steps or slides its boundary astray: a short
   // budget, then the whole mesh.
   UntangleOptions o = options_;
@@ -121,7 +124,7 @@ RunOutput UntangleRunner::run_local() {
   for (const int layers : {1, 2}) {
     out = RunOutput();
     x_ = input_.x;
-    const LocalUntangle l = untangle_locally(input_, topology_, surfaces_, layers, o, x_);
+    const LocalUntangle l = untangle_locally(input_, topology_, may_slide_, boundary_.feature_angle, layers, o, x_);
     IterationCounts counts;
     count(counts, l.result);
     out.report.iterations = counts;
@@ -133,6 +136,7 @@ RunOutput UntangleRunner::run_local() {
     out.extra["steps"] = 1;
     out.extra["patch_cells"] = l.cells;
     out = finish(std::move(out), bc_);
+    out.extra["boundary_deviation_max"] = l.deviation;
     if (out.report.converged) break;
   }
   return out;
@@ -149,7 +153,8 @@ RunOutput UntangleRunner::run(const StepSink& on_step) {
     start(false);
   }
   RunOutput out = run_steps(on_step);
-  if (out.report.converged || sliding_ || boundary_.mode != "auto" || surfaces_.empty()) return out;
+  const bool any_slides = std::find(may_slide_.begin(), may_slide_.end(), 1) != may_slide_.end();
+  if (out.report.converged || sliding_ || boundary_.mode != "auto" || !any_slides) return out;
   log_progress("untangle: the mesh stays tangled with the boundary fixed (" + out.report.message +
                "): starting over with the boundary sliding along itself");
   boundary_why_ = "the mesh stayed tangled with the boundary fixed";

@@ -139,10 +139,9 @@ Eigen::MatrixXd untangled_start(const Mesh& mesh, const Topology& topology, int 
   // Cells inverted against the boundary: first a patch around them, the boundary sliding
   // along itself (as `untangle MESH` does).
   if (boundary_bound_inverted(mesh, bc) > 0) {
-    const std::vector<FitTerm> surfaces = untangle_surfaces(mesh, topology, on_boundary, 30.0);
     for (const int layers : {1, 2}) {
       moved.x = mesh.x;
-      const LocalUntangle l = untangle_locally(mesh, topology, surfaces, layers, uo, moved.x);
+      const LocalUntangle l = untangle_locally(mesh, topology, on_boundary, 30.0, layers, uo, moved.x);
       newton += l.result.newton;
       if (count_invalid_cells(moved) == 0) return moved.x;
     }

@@ -20,10 +20,10 @@ bool cell_valid(const Mesh& mesh, const CellBlock& block, std::size_t c, const E
 
 }  // namespace
 
-std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
-                                       double feature_angle) {
+std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
+                                       const std::vector<std::uint8_t>& may_slide, double feature_angle) {
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(mesh.dim) * mesh.n_nodes(), 0);
-  std::vector<FitTerm> surfaces = boundary_slides(mesh, topology, topology.boundary_facets, feature_angle, true, fixed);
+  std::vector<FitTerm> surfaces = boundary_slides(mesh, topology, facets, feature_angle, true, fixed);
   for (FitTerm& t : surfaces)
     std::erase_if(t.nodes, [&](std::int32_t node) { return may_slide[static_cast<std::size_t>(node)] == 0; });
   std::erase_if(surfaces, [](const FitTerm& t) { return t.nodes.empty(); });
@@ -45,8 +45,8 @@ std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc)
   return count;
 }
 
-LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& surfaces, int layers,
-                               UntangleOptions options, Eigen::MatrixXd& x) {
+LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
+                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x) {
   LocalUntangle local;
   // The patch: the inverted cells and `layers` rings of cells around them (sharing a node).
   const std::size_t n_cells = topology.block_offset.back();
@@ -99,7 +99,12 @@ LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const
   std::erase_if(sub.cells, [](const CellBlock& block) { return block.nodes.empty(); });
   sub.x = x(Eigen::all, global_of);
   // Fixed: the nodes the patch shares with the rest of the mesh and the boundary nodes that
-  // do not slide; the sliding ones keep their surfaces.
+  // do not slide; the sliding ones move on the surface of the patch's boundary facets (every
+  // facet through a node not shared with the rest is one of them).
+  std::vector<std::int32_t> facets;
+  for (std::int32_t f : topology.boundary_facets)
+    if (in[static_cast<std::size_t>(topology.facets[static_cast<std::size_t>(f)][0].cell)]) facets.push_back(f);
+  const std::vector<FitTerm> surfaces = untangle_surfaces(mesh, topology, facets, may_slide, feature_angle);
   std::vector<std::uint8_t> cut(global_of.size(), 0), slides(mesh.n_nodes(), 0);
   for (std::size_t l = 0; l < global_of.size(); ++l)
     for (std::int32_t cell : topology.cells_of(static_cast<std::size_t>(global_of[l]))) cut[l] = cut[l] || !in[static_cast<std::size_t>(cell)];
@@ -131,6 +136,7 @@ LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const
   Eigen::MatrixXd y = sub.x;
   local.result = untangler.solve(sub.x, y);
   local.cells = patch.size();
+  local.deviation = fit_error(sub_surfaces, y);
   x(Eigen::all, global_of) = y;
   return local;
 }

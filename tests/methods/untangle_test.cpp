@@ -443,7 +443,7 @@ TEST(Untangle, ACellFoldedAgainstTheBoundaryIsRepairedInAPatchWithTheBoundarySli
   // Every side node slides on its side; the square's four corners are in no surface.
   std::vector<std::uint8_t> may_slide(n, 0);
   for (std::int32_t node : boundary_nodes(f.mesh, f.topology)) may_slide[static_cast<std::size_t>(node)] = 1;
-  const std::vector<FitTerm> surfaces = untangle_surfaces(f.mesh, f.topology, may_slide, 30.0);
+  const std::vector<FitTerm> surfaces = untangle_surfaces(f.mesh, f.topology, f.topology.boundary_facets, may_slide, 30.0);
   std::vector<int> terms_of(n, 0);
   for (const FitTerm& t : surfaces)
     for (std::int32_t node : t.nodes) ++terms_of[static_cast<std::size_t>(node)];
@@ -454,7 +454,7 @@ TEST(Untangle, ACellFoldedAgainstTheBoundaryIsRepairedInAPatchWithTheBoundarySli
   }
 
   Eigen::MatrixXd x = f.mesh.x;
-  const LocalUntangle local = untangle_locally(f.mesh, f.topology, surfaces, 1, {}, x);
+  const LocalUntangle local = untangle_locally(f.mesh, f.topology, may_slide, 30.0, 1, {}, x);
   EXPECT_TRUE(local.result.converged) << local.result.message;
   EXPECT_GT(local.cells, 1u);
   EXPECT_LT(local.cells, f.mesh.n_cells());

@@ -87,7 +87,9 @@ class UntangleRunner {
   std::string where_;
   UntangleOptions options_;
   UntangleBoundary boundary_;
+  std::vector<std::uint8_t> may_slide_;  // per node: a boundary node no entry names
   std::vector<FitTerm> surfaces_;     // where the boundary slides: facets of the input, case level sets
+  bool facet_surfaces_ = false;       // surfaces_ holds the input's facets (built when first needed)
   BoundaryTargets bc_;                // the motion's, with the nodes of surfaces_ free
   bool sliding_ = false;
   bool local_ = false;                // "auto" on a bare repair: a patch around the inverted cells first

@@ -105,12 +105,13 @@ class Untangler {
 };
 
 /// The surfaces that the boundary nodes flagged in `may_slide` (one flag per node) move on
-/// while untangling: the input's own boundary facets in smooth patches, as optimize's
+/// while untangling: the boundary facets `facets` (indices into topology.facets; all of
+/// topology.boundary_facets for the whole mesh) as they are, in smooth patches, as optimize's
 /// `--boundary slide` makes them (boundary_slides, curved, patches split where the normals
 /// turn by more than `feature_angle` degrees). A node of one patch slides on it, a node of
 /// two on their common curve; corners, crease nodes and every node not flagged stay fixed.
-std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
-                                       double feature_angle);
+std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
+                                       const std::vector<std::uint8_t>& may_slide, double feature_angle);
 
 /// Inverted cells of `mesh` (Bernstein bounds of det A) whose corner nodes are all fixed,
 /// prescribed or sliding in `bc`: only interior nodes of the cell (edge, face and body nodes)
@@ -122,15 +123,17 @@ std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc)
 struct LocalUntangle {
   UntangleResult result;
   std::size_t cells = 0;
+  double deviation = 0.0;  ///< the largest distance of a sliding node from its surface
 };
 
 /// Repairs `x` (d × n, positions of the nodes of `mesh`) in a patch around its inverted cells
 /// (Bernstein bounds): the inverted cells and `layers` rings of cells around them (sharing a
 /// node), untangled as a mesh of their own (Untangler, reference InputWhereValid) with the nodes they
-/// share with the rest of the mesh fixed, the nodes of `surfaces` in the patch sliding on them
-/// and its other boundary nodes fixed. Nothing outside the patch moves. x holds the patch's
-/// last iterate on return, valid or not (result.converged).
-LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& surfaces, int layers,
-                               UntangleOptions options, Eigen::MatrixXd& x);
+/// share with the rest of the mesh fixed, its boundary nodes flagged in `may_slide` sliding on
+/// the patch's boundary facets (untangle_surfaces) and its other boundary nodes fixed. Nothing
+/// outside the patch moves. x holds the patch's last iterate on return, valid or not
+/// (result.converged).
+LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
+                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x);
 
 }  // namespace meshmorph
