@@ -150,6 +150,9 @@ RunOutput OptimizeRunner::run() const {
   extra["mu_min"] = r.mu_min;
   extra["mu_mean"] = r.mu_mean;
   extra["mu_max"] = r.mu_max;
+  // Valid with F below the input's (or untangled): better than the input even where Newton
+  // stopped short, so written (DESIGN §3.1).
+  extra["improved"] = report.valid && (initial_inverted_ > 0 || r.energy < r.energy0);
   return out;
 }
 

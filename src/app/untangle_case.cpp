@@ -8,7 +8,7 @@
 namespace meshmorph {
 
 UntangleOptions read_untangle_options(const nlohmann::json& options, const std::string& file, int threads,
-                                      std::optional<UntangleReference>& reference) {
+                                      std::optional<UntangleReference>& reference, UntangleBoundary& boundary) {
   UntangleOptions o;
   OptionReader r(options, file);
   r.read("n", o.n, -16.0, -1e-3);
@@ -30,6 +30,8 @@ UntangleOptions read_untangle_options(const nlohmann::json& options, const std::
   r.read("predictor", o.predictor);
   r.read("max_newton", o.max_newton, 1, 100000);
   o.solver = detail::read_solver(r);
+  if (r.has("boundary")) r.read("boundary", boundary.mode, {"fixed", "slide", "auto"});
+  r.read("feature_angle", boundary.feature_angle, 0.0, 180.0);
   r.finish();
   o.threads = threads;
   return o;

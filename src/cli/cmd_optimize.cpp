@@ -20,12 +20,17 @@ namespace {
 
 struct OptimizeArgs : detail::MethodArgs {
   std::string metric, target, boundary, solver;
+  int max_newton = 0;
+  double rtol = -1.0;
 };
 
 Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
   const RunTimings timings;
   const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
-  const OptimizeRunner runner(detail::with_flags(c ? *c : bare_case(a.input), a), read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
+  CaseFile run_case = detail::with_flags(c ? *c : bare_case(a.input), a);
+  detail::set_option(run_case, "max_newton", a.max_newton, a.max_newton > 0);
+  detail::set_option(run_case, "rtol", a.rtol, a.rtol >= 0.0);
+  const OptimizeRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
                               OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
   // The rest of the run, its summary included, on the threads the runner picked for this size.
   if (runner.threads() > 0) omp_set_num_threads(runner.threads());
@@ -52,7 +57,7 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
                 extra["mu_mean"].get<double>(), extra["mu_max"].get<double>(), extra["min_det_initial"].get<double>(),
                 extra["min_det_final"].get<double>(), run.quality.inverted_elements);
   out << line;
-  return detail::print_result(out, run.report, files.output);
+  return detail::print_result(out, run.report, files.output, 0, detail::writes_mesh(run));
 }
 
 }  // namespace
@@ -74,6 +79,8 @@ void add_optimize_command(CLI::App& app, Command& run, const int& threads) {
       ->check(CLI::IsMember({"fixed", "slide", "slide-planes"}));
   cmd->add_option("--solver", args->solver, "auto (default) | cholesky | iterative | matrix-free | petsc-gamg | petsc-hypre")
       ->check(CLI::IsMember({"auto", "cholesky", "iterative", "matrix-free", "petsc-gamg", "petsc-hypre"}));
+  cmd->add_option("--max-newton", args->max_newton, "Newton steps at most (default 50)")->check(CLI::Range(1, 100000))->type_name("N");
+  cmd->add_option("--rtol", args->rtol, "Stop at |grad F| <= rtol |grad F0| (default 1e-10)")->check(CLI::Range(0.0, 1.0))->type_name("R");
 }
 
 }  // namespace meshmorph

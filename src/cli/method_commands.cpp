@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The subcommands morph, untangle, fit and deform: a case (untangle: or a mesh), -o and
-// --report, and the run of each file cmd_<name>.cpp.
+// --report, and the run of each file cmd_<name>.cpp (untangle adds its own options there).
 #include <memory>
 #include <ostream>
 
@@ -23,12 +23,6 @@ void add_method_commands(CLI::App& app, Command& run, const int& threads) {
         "Case file (JSON, see docs/case-file.md)",
         "Output mesh (overrides the case's \"output\")"},
        &detail::run_morph},
-      {{"untangle",
-        "Untangle and smooth a mesh after a boundary motion (paper 001)",
-        "INPUT",
-        "Case file (JSON, docs/case-file.md) or a mesh whose boundary stays fixed",
-        "Output mesh (default: the case's \"output\"; for a mesh, NAME_untangled.EXT)"},
-       &detail::run_untangle},
       {{"fit",
         "Fit the mesh's interface or boundary to a level set (paper 003)",
         "CASE",
@@ -42,8 +36,10 @@ void add_method_commands(CLI::App& app, Command& run, const int& threads) {
         "Output mesh (overrides the case's \"output\")"},
        &detail::run_deform},
   };
-  for (const Entry& e : entries)
+  for (const Entry& e : entries) {
     detail::add_method_command(app, run, threads, e.help, std::make_shared<detail::MethodArgs>(), e.body);
+    if (e.body == &detail::run_morph) detail::add_untangle_command(app, run, threads);  // in --help's order
+  }
 }
 
 }  // namespace meshmorph

@@ -82,11 +82,12 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
   check_outputs(outputs);
 }
 
-void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
-                       const std::optional<std::filesystem::path>& output,
+bool writes_mesh(const RunOutput& run) { return run.report.converged || run.extra.value("improved", false); }
+
+void write_result_mesh(const RunOutput& run, const std::optional<std::filesystem::path>& output,
                        const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
-  if (!report.converged || !output) return;
-  write_mesh(*output, moved, mesh_options(q, point_vectors));
+  if (!writes_mesh(run) || !output) return;
+  write_mesh(*output, run.moved, mesh_options(run.quality, point_vectors));
 }
 
 WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
@@ -98,7 +99,7 @@ WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Ei
 }
 
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
-                     int step_files) {
+                     int step_files, bool kept) {
   if (report.cell_types.size() > 1) {
     std::string types;
     for (const CellTypeMinima& t : report.cell_types) {
@@ -118,6 +119,8 @@ Outcome print_result(std::ostream& out, const Report& report, const std::optiona
   }
   out << "result   " << report.message << "\n";
   if (report.converged && output) out << "wrote    " << output->string() << "\n";
+  else if (kept && output)
+    out << "wrote    " << output->string() << " (valid and better than the input, though the goal was not reached)\n";
   else if (output && step_files > 0)
     out << "wrote    no result mesh (the goal was not reached); the " << step_files << " increment"
         << (step_files > 1 ? "s" : "") << " before: " << step_path(*output, 1).string()
@@ -159,7 +162,7 @@ RunFiles run_files(const std::string& output, const std::string& report, const s
 void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings, const Mesh& input,
                const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   run.report.case_file = files.case_file;
-  write_result_mesh(run.report, run.moved, run.quality, files.output, point_vectors);
+  write_result_mesh(run, files.output, point_vectors);
   if (run.report.converged && files.plot) {
     write_comparison(*files.plot, input, run.moved);
     log_info("wrote " + files.plot->string());

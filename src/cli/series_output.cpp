@@ -76,7 +76,7 @@ void SeriesOutput::write_one_file(const RunOutput& run) const {
 
 void SeriesOutput::finish(RunOutput& run, const RunTimings& timings) {
   if (one_file_) {
-    if (run.report.converged) write_one_file(run);
+    if (writes_mesh(run)) write_one_file(run);
     RunFiles report_only = files_;
     report_only.output.reset();
     write_run(run, report_only, timings, input_);
@@ -88,7 +88,7 @@ void SeriesOutput::finish(RunOutput& run, const RunTimings& timings) {
   if (!pvd) return;
   std::vector<std::pair<double, std::filesystem::path>> series;
   for (const auto& [step, path] : written_) series.emplace_back(time_of(step), path);
-  if (run.report.converged) series.emplace_back(time_of(last_step_ + 1), *files_.output);
+  if (writes_mesh(run)) series.emplace_back(time_of(last_step_ + 1), *files_.output);
   if (!series.empty()) write_pvd(*pvd, series);
 }
 

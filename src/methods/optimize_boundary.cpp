@@ -124,18 +124,32 @@ Eigen::MatrixXd untangled_start(const Mesh& mesh, const Topology& topology, int 
   bc.role.assign(mesh.n_nodes(), NodeRole::Free);
   bc.target = mesh.x;
   bc.normal = Eigen::MatrixXd::Zero(mesh.dim, static_cast<Eigen::Index>(mesh.n_nodes()));
-  for (std::int32_t node : boundary_nodes(mesh, topology)) bc.role[static_cast<std::size_t>(node)] = NodeRole::Fixed;
+  std::vector<std::uint8_t> on_boundary(mesh.n_nodes(), 0);
+  for (std::int32_t node : boundary_nodes(mesh, topology)) {
+    bc.role[static_cast<std::size_t>(node)] = NodeRole::Fixed;
+    on_boundary[static_cast<std::size_t>(node)] = 1;
+  }
   UntangleOptions uo;
   uo.reference = UntangleReference::Regular;
   uo.threads = threads;
   // In 3D CG-AMG: the start needs only be valid, and CHOLMOD's factor of a high-order 3D
   // Hessian would be the run's peak (untangle3d: 158 MB, against 84 MB with CG-AMG).
   if (mesh.dim == 3) uo.solver = LinearSolverKind::Iterative;
+  Mesh moved = mesh;
+  // Cells inverted against the boundary: first a patch around them, the boundary sliding
+  // along itself (as `untangle MESH` does).
+  if (boundary_bound_inverted(mesh, bc) > 0) {
+    for (const int layers : {1, 2}) {
+      moved.x = mesh.x;
+      const LocalUntangle l = untangle_locally(mesh, topology, on_boundary, 30.0, layers, uo, moved.x);
+      newton += l.result.newton;
+      if (count_invalid_cells(moved) == 0) return moved.x;
+    }
+  }
   Untangler untangler(mesh, topology, bc, uo);
   Eigen::MatrixXd x = mesh.x;
   const UntangleResult r = untangler.solve(mesh.x, x);
-  newton = r.newton;
-  Mesh moved = mesh;
+  newton += r.newton;
   moved.x = x;
   if (count_invalid_cells(moved) > 0)
     throw InputError(where + ": the mesh is tangled and untangling with its boundary fixed failed: " + r.message);

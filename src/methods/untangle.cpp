@@ -36,8 +36,9 @@ constexpr double kSmallestDelta = 1e-14;
 template <int d>
 class UntangleImpl final : public Untangler::Impl {
  public:
-  UntangleImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options)
-      : options_(options), bc_(&bc), problem_(input, topology, bc, options.reference, options.n, options.threads) {
+  UntangleImpl(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options,
+               const std::vector<FitTerm>& surfaces)
+      : options_(options), bc_(&bc), problem_(input, topology, bc, options.reference, options.n, options.threads, surfaces) {
     solver_ = detail::make_newton_solver<d>(options.solver, options.threads, input, problem_.dofs());
   }
 
@@ -164,7 +165,9 @@ class UntangleImpl final : public Untangler::Impl {
     const double next = std::max(delta - options_.alpha * step, options_.beta * delta);
     problem_.set_delta(next);
     ++result.delta_updates;
-    log_detail(format("untangle: delta %.4g -> %.4g", delta, next));
+    // A progress line each update: Newton may take no step at a δ, and a run of such updates
+    // is otherwise silent.
+    log_progress(format("untangle: delta %.4g -> %.4g", delta, next));
   }
 
   static void record(UntangleResult& result, int step, int newton, double delta, double alpha,
@@ -183,12 +186,13 @@ class UntangleImpl final : public Untangler::Impl {
 
 }  // namespace
 
-Untangler::Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options) {
+Untangler::Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options,
+                     const std::vector<FitTerm>& surfaces) {
   MESHMORPH_CHECK(bc.n_nodes() == input.n_nodes(), "Untangler: the boundary targets do not fit the mesh");
   if (input.dim == 2)
-    impl_ = std::make_unique<UntangleImpl<2>>(input, topology, bc, options);
+    impl_ = std::make_unique<UntangleImpl<2>>(input, topology, bc, options, surfaces);
   else
-    impl_ = std::make_unique<UntangleImpl<3>>(input, topology, bc, options);
+    impl_ = std::make_unique<UntangleImpl<3>>(input, topology, bc, options, surfaces);
 }
 
 Untangler::~Untangler() = default;

@@ -30,7 +30,8 @@ Eigen::Matrix<double, d, Eigen::Dynamic> gather(const Eigen::MatrixXd& x, const 
 
 template <int d>
 UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc,
-                                    UntangleReference reference, double n, int threads)
+                                    UntangleReference reference, double n, int threads,
+                                    const std::vector<FitTerm>& surfaces)
     : mesh_(&input), topology_(&topology), bc_(&bc), threads_(threads), n_(n), metric_({0.0, n}) {
   // The regular reference has one size for the whole mesh, the input's mean cell volume, so
   // that δ compares with volumes of the mesh's own scale (the paper's h(V) up to a constant).
@@ -47,7 +48,7 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
     throw InputError("untangle: every cell of the input mesh has zero volume");
   const double mean_volume = volume_sum / static_cast<double>(std::max<std::size_t>(n_cells_, 1));
 
-  targets_.kind = reference == UntangleReference::Input ? TargetKind::Input : TargetKind::Ideal;
+  targets_.kind = reference == UntangleReference::Regular ? TargetKind::Ideal : TargetKind::Input;
   targets_.blocks.resize(input.cells.size());
   for (std::size_t bi = 0; bi < input.cells.size(); ++bi) {
     const CellBlock& block = input.cells[bi];
@@ -74,10 +75,15 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
     const MatT<d> W_ideal_inv = ideal_jacobian<d>(block.type, mean_volume > 0.0 ? mean_volume : 1.0).inverse();
     for (std::size_t c = 0; c < block.n_cells(); ++c) {
       const auto X = gather<d>(input.x, block.cell(c), block.n_nodes_per_cell());
+      // InputWhereValid: the cells valid by the Bernstein bounds (a fold between the points
+      // would otherwise keep its input shape as target).
+      const bool regular = reference == UntangleReference::Regular ||
+                           (reference == UntangleReference::InputWhereValid &&
+                            !(min_jacobian_det(block.type, block.order, X) > 0.0));
       for (int q = 0; q < Q; ++q) {
         QuadratureTarget<d>& t = bt.points[c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)];
         t.weight = w[q];
-        if (reference == UntangleReference::Regular) {
+        if (regular) {
           t.W_inv = W_ideal_inv;
           continue;
         }
@@ -91,14 +97,18 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
     }
   }
 
-  // Unknowns: every DOF of the free and slide nodes; SlideConstraints holds the slide nodes
-  // on their planes, one level set per distinct plane (normal and offset).
+  // Unknowns: every DOF of the free, slide and surface nodes; SlideConstraints holds the
+  // slide nodes on their planes, one level set per distinct plane (normal and offset), and the
+  // surface nodes on their level sets.
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * input.n_nodes(), 0), wide(fixed.size(), 0);
   std::map<std::array<double, d + 1>, std::size_t> plane_of;
-  std::vector<FitTerm> slides;
+  std::vector<FitTerm> slides = surfaces;
+  std::vector<std::uint8_t> on_surface(input.n_nodes(), 0);
+  for (const FitTerm& t : surfaces)
+    for (std::int32_t node : t.nodes) on_surface[static_cast<std::size_t>(node)] = 1;
   for (std::size_t i = 0; i < input.n_nodes(); ++i) {
     const bool orphan = topology.node_cell_offset[i + 1] == topology.node_cell_offset[i];
-    const NodeRole role = bc.role[i];
+    const NodeRole role = on_surface[i] ? NodeRole::Free : bc.role[i];
     for (int k = 0; k < d; ++k) {
       const std::size_t dof = static_cast<std::size_t>(d) * i + static_cast<std::size_t>(k);
       fixed[dof] = orphan || role == NodeRole::Fixed || role == NodeRole::Prescribed;

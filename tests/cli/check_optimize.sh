@@ -6,7 +6,7 @@
 # and a better worst quality (max μ) than with the sphere fixed; the P2 sphere sliding on its
 # own facets stays on them to 1e-10 and beats the fixed sphere too; a bare tangled mesh is
 # untangled, then optimized; CHOLMOD reaches the matrix-free solver's F; a run out of Newton
-# steps exits 1 without a mesh; bad input exits 2 and writes nothing. The P3 cases are in
+# steps exits 1 and writes its valid, improved mesh; bad input exits 2 and writes nothing. The P3 cases are in
 # check_optimize_p3.sh.
 set -u
 mm=$1 examples=$2 data=$3 work=$4
@@ -96,11 +96,20 @@ less 0 "$(field "$work/tangled.json" initial_inverted_elements)" || fail "tangle
 [ "$(field "$work/tangled.json" inverted_elements)" = 0 ] || fail "tangled: inverted elements left"
 [ -s "$work/tangled_quads_optimized.msh" ] || fail "tangled: no mesh written"
 
-# Out of Newton steps: exit 1, no mesh, a report that says so.
+# Out of Newton steps from a valid mesh: exit 1 and a report that says so, and the improved
+# mesh written (DESIGN §3.1): valid, its F below the input's. The same with --max-newton on
+# the bare mesh.
 make_case budget '[{"group": "box", "fixed": true}]' '{"max_newton": 1}'
 expect budget 1 "stopped after 1 Newton"
-[ ! -e "$work/budget.vtu" ] || fail "budget: a mesh was written by a run that missed its goal"
 [ "$(field "$work/budget.json" converged)" = false ] || fail "budget: report says converged"
+[ -s "$work/budget.vtu" ] || fail "budget: the improved mesh was not written"
+[ "$(field "$work/budget.json" valid)" = true ] && [ "$(field "$work/budget.json" improved)" = true ] || fail "budget: not valid and improved"
+less "$(field "$work/budget.json" energy_final)" "$(field "$work/budget.json" energy_initial)" || fail "budget: F did not drop"
+"$mm" --quiet quality "$work/budget.vtu" > /dev/null || fail "budget: the written mesh is invalid"
+expect "$work/bare.msh" 1 "valid and better than the input" --max-newton 1 -o "$work/bare_budget.msh" --report "$work/bare_budget.json"
+[ "$(field "$work/bare_budget.json" converged)" = false ] || fail "--max-newton 1: converged"
+less "$(field "$work/bare_budget.json" energy_final)" "$(field "$work/bare_budget.json" energy_initial)" || fail "--max-newton 1: F"
+"$mm" --quiet quality "$work/bare_budget.msh" > /dev/null || fail "--max-newton 1: the written mesh is invalid"
 
 # A det floor that F's minimiser lies beyond: the run ends on the floor, valid, exit 0.
 printf '{"mesh": "%s", "order": 2, "options": {"det_floor": 0.9}, "output": "floor.vtu", "report": "floor.json"}\n' \

@@ -4,7 +4,8 @@
 # (example 05) starts tangled and ends valid with its mesh and report; a run out of Newton
 # steps exits 1 without a mesh; a bare tangled mesh (DATA/tangled_quads.msh) is untangled with
 # its boundary fixed and written next to itself; bad options and an input reference on a
-# tangled mesh exit 2 and write nothing; a wall pushed through the other exits 1, no mesh.
+# tangled mesh exit 2 and write nothing; a wall pushed through the other exits 1, no mesh; a
+# sphere's group slides along its level set and the box along its own facets.
 set -u
 mm=$1 examples=$2 data=$3 work=$4
 rm -rf "$work" && mkdir -p "$work"
@@ -69,4 +70,12 @@ make_case folded '[{"group": "top", "displace": {"file": "through.csv"}}, {"grou
 expect folded 1 "no valid mesh\|no interior motion"
 [ ! -e "$work/folded.vtu" ] || fail "folded: a mesh was written"
 [ "$(field "$work/folded.json" converged)" = false ] || fail "folded: report says converged"
+# "boundary": "slide": a `project` group slides along its level set, the other boundary nodes
+# along the input's facets; the report says so and measures their distance from the surfaces.
+printf '{"mesh": "%s", "boundary": [{"group": "sphere", "project": {"sphere": {"center": [0, 0, 0], "radius": 0.4}}}], "options": {"boundary": "slide"}, "output": "slide.vtu", "report": "slide.json"}\n' \
+  "$(realpath "$examples/meshes/sphere_in_box_p2.msh")" > "$work/slide.case.json"
+expect slide 0 "boundary slides along itself"
+[ "$(field "$work/slide.json" boundary)" = slide ] || fail "slide: boundary $(field "$work/slide.json" boundary)"
+awk -v a="$(field "$work/slide.json" boundary_deviation_max)" 'BEGIN { exit !(a + 0 < 1e-10) }' || fail "slide: nodes left their surfaces"
+"$mm" --quiet quality "$work/slide.vtu" > /dev/null || fail "slide: output invalid"
 echo "untangle CLI checks passed"

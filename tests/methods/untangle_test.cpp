@@ -406,5 +406,71 @@ TEST(Untangle, RecoversAHybridLayerMesh) {
   expect_valid_on_targets(mesh, bc, r, x);
 }
 
+// A P2 square whose corner triangle (all three corners on the boundary) is folded by its one
+// interior node pulled past the square's corner.
+struct FoldedCorner {
+  Mesh mesh = structured_mesh(ElementType::Triangle, 2, 4);
+  Topology topology;
+  Eigen::Vector2d corner;
+  FoldedCorner() {
+    topology = build_topology(mesh);
+    std::vector<std::uint8_t> on_boundary(mesh.n_nodes(), 0);
+    for (std::int32_t node : boundary_nodes(mesh, topology)) on_boundary[static_cast<std::size_t>(node)] = 1;
+    const CellBlock& block = mesh.cells[0];
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const std::int32_t* n = block.cell(c);
+      if (!(on_boundary[n[0]] && on_boundary[n[1]] && on_boundary[n[2]])) continue;
+      // The corner of the square is the cell's corner with two boundary edges; the midnode
+      // opposite it (local 4: edge 1–2 for corner 0, Gmsh order 3: 0–1, 4: 1–2, 5: 2–0) is interior.
+      for (int a = 0; a < 3; ++a) {
+        const int mid = 3 + (a + 1) % 3;
+        if (on_boundary[n[mid]]) continue;
+        corner = mesh.x.col(n[a]);
+        mesh.x.col(n[mid]) = corner - 0.2 * (Eigen::Vector2d(mesh.x.col(n[mid])) - corner);
+        return;
+      }
+    }
+  }
+};
+
+TEST(Untangle, ACellFoldedAgainstTheBoundaryIsRepairedInAPatchWithTheBoundarySliding) {
+  const FoldedCorner f;
+  const std::size_t n = f.mesh.n_nodes();
+  ASSERT_GT(count_invalid_cells(f.mesh), 0u);
+  const BoundaryTargets bc = boundary(f.mesh, f.topology, [](const Eigen::VectorXd&) { return false; }, {});
+  EXPECT_EQ(boundary_bound_inverted(f.mesh, bc), 1u);
+
+  // Every side node slides on its side; the square's four corners are in no surface.
+  std::vector<std::uint8_t> may_slide(n, 0);
+  for (std::int32_t node : boundary_nodes(f.mesh, f.topology)) may_slide[static_cast<std::size_t>(node)] = 1;
+  const std::vector<FitTerm> surfaces = untangle_surfaces(f.mesh, f.topology, f.topology.boundary_facets, may_slide, 30.0);
+  std::vector<int> terms_of(n, 0);
+  for (const FitTerm& t : surfaces)
+    for (std::int32_t node : t.nodes) ++terms_of[static_cast<std::size_t>(node)];
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d x = f.mesh.x.col(static_cast<Eigen::Index>(i));
+    const bool square_corner = (x.array() == 0.0 || x.array() == 1.0).all();
+    EXPECT_EQ(terms_of[i], may_slide[i] && !square_corner ? 1 : 0) << "node " << i;
+  }
+
+  Eigen::MatrixXd x = f.mesh.x;
+  const LocalUntangle local = untangle_locally(f.mesh, f.topology, may_slide, 30.0, 1, {}, x);
+  EXPECT_TRUE(local.result.converged) << local.result.message;
+  EXPECT_GT(local.cells, 1u);
+  EXPECT_LT(local.cells, f.mesh.n_cells());
+  Mesh repaired = f.mesh;
+  repaired.x = x;
+  EXPECT_EQ(count_invalid_cells(repaired), 0u);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = x.col(static_cast<Eigen::Index>(i)), p0 = f.mesh.x.col(static_cast<Eigen::Index>(i));
+    if (may_slide[i]) {
+      EXPECT_LT(std::min({p.x(), 1.0 - p.x(), p.y(), 1.0 - p.y()}), 1e-12) << "node " << i << " left the boundary";
+    }
+    if ((p0 - f.corner).norm() > 0.8) {
+      EXPECT_EQ(p, p0) << "node " << i << " outside the patch moved";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace meshmorph

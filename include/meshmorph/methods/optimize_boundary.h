@@ -50,8 +50,10 @@ OptimizeConstraints optimize_constraints(Mesh& start, const Topology& topology, 
                                          BoundaryTreatment treatment, double feature_angle, const std::string& file);
 
 /// A valid start for TMOP from a tangled mesh: untangled (paper 001, regular reference) with
-/// its boundary fixed, on `threads` threads; `newton` receives the Newton steps taken. Throws
-/// InputError starting with `where` when untangling does not reach a valid mesh.
+/// its boundary fixed, on `threads` threads; where inverted cells have all their corners on the
+/// boundary (boundary_bound_inverted), first in patches around them with the boundary sliding
+/// along itself (untangle_locally). `newton` (0 on entry) receives the Newton steps taken.
+/// Throws InputError starting with `where` when untangling does not reach a valid mesh.
 Eigen::MatrixXd untangled_start(const Mesh& mesh, const Topology& topology, int threads, const std::string& where,
                                 long long& newton);
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "meshmorph/energy/level_set_penalty.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/mesh/topology.h"
 #include "meshmorph/solve/linear_solver.h"
@@ -20,6 +21,9 @@ enum class UntangleReference {
   /// The regular simplex (square, cube), one size for the whole mesh (the input's mean cell
   /// volume): the paper's tests. Elements are driven towards equilateral shape.
   Regular,
+  /// The input element for the valid cells (Bernstein bounds), the regular one for the
+  /// others: a repair that keeps the valid cells as they are where it can.
+  InputWhereValid,
 };
 
 /// How δ is lowered while the mesh is tangled (docs/untangle.md).
@@ -73,7 +77,9 @@ struct UntangleResult {
 /// targets (which may tangle the mesh) and minimises F = Σ_e q_e*ⁿ over the free nodes, with
 /// the regularized volume h(V) while the mesh is tangled and F itself once it is valid.
 /// Fixed and prescribed nodes are not unknowns; a slide node moves along its plane, held on
-/// it by SlideConstraints (energy/slide_constraints.h; any plane).
+/// it by SlideConstraints (energy/slide_constraints.h; any plane), and a node of `surfaces`
+/// moves along that level set (the input's own boundary facets, untangle_surfaces, or a
+/// level set of the case), whatever its role in `bc`.
 ///
 /// One Untangler serves a time series: each solve() starts from the previous result, moved
 /// by the differential predictor (eq. 22–23) when it is on.
@@ -81,7 +87,8 @@ class Untangler {
  public:
   /// `input`, `topology` and `bc` must outlive the Untangler. Throws InputError when the
   /// reference is Input and an input cell is inverted.
-  Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options);
+  Untangler(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, UntangleOptions options,
+            const std::vector<FitTerm>& surfaces = {});
   ~Untangler();
   Untangler(const Untangler&) = delete;
   Untangler& operator=(const Untangler&) = delete;
@@ -96,5 +103,37 @@ class Untangler {
  private:
   std::unique_ptr<Impl> impl_;
 };
+
+/// The surfaces that the boundary nodes flagged in `may_slide` (one flag per node) move on
+/// while untangling: the boundary facets `facets` (indices into topology.facets; all of
+/// topology.boundary_facets for the whole mesh) as they are, in smooth patches, as optimize's
+/// `--boundary slide` makes them (boundary_slides, curved, patches split where the normals
+/// turn by more than `feature_angle` degrees). A node of one patch slides on it, a node of
+/// two on their common curve; corners, crease nodes and every node not flagged stay fixed.
+std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topology, const std::vector<std::int32_t>& facets,
+                                       const std::vector<std::uint8_t>& may_slide, double feature_angle);
+
+/// Inverted cells of `mesh` (Bernstein bounds of det A) whose corner nodes are all fixed,
+/// prescribed or sliding in `bc`: only interior nodes of the cell (edge, face and body nodes)
+/// can move, which rarely suffices when the cell was bent against a curved boundary, so
+/// untangling should move the boundary along itself.
+std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc);
+
+/// The result of untangle_locally and the cells of its patch.
+struct LocalUntangle {
+  UntangleResult result;
+  std::size_t cells = 0;
+  double deviation = 0.0;  ///< the largest distance of a sliding node from its surface
+};
+
+/// Repairs `x` (d × n, positions of the nodes of `mesh`) in a patch around its inverted cells
+/// (Bernstein bounds): the inverted cells and `layers` rings of cells around them (sharing a
+/// node), untangled as a mesh of their own (Untangler, reference InputWhereValid) with the nodes they
+/// share with the rest of the mesh fixed, its boundary nodes flagged in `may_slide` sliding on
+/// the patch's boundary facets (untangle_surfaces) and its other boundary nodes fixed. Nothing
+/// outside the patch moves. x holds the patch's last iterate on return, valid or not
+/// (result.converged).
+LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
+                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x);
 
 }  // namespace meshmorph

@@ -55,9 +55,16 @@ CLI::App* add_method_command(CLI::App& app, Command& run, const int& threads, co
   return cmd;
 }
 
+/// `option` = `value` in the case's "options", over what the case says, where `given`.
+template <class T>
+void set_option(CaseFile& c, const char* option, const T& value, bool given) {
+  if (given) c.options[option] = value;
+}
+
 /// The runs of the subcommands of add_method_commands (cli/cmd_<name>.cpp).
 Outcome run_morph(const MethodArgs& a, int threads, std::ostream& out);
-Outcome run_untangle(const MethodArgs& a, int threads, std::ostream& out);
+/// `meshmorph untangle` with its own options (--max-newton, --eps-q, --boundary).
+void add_untangle_command(CLI::App& app, Command& run, const int& threads);
 Outcome run_fit(const MethodArgs& a, int threads, std::ostream& out);
 Outcome run_deform(const MethodArgs& a, int threads, std::ostream& out);
 

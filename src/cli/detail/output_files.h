@@ -41,18 +41,22 @@ void check_outputs(const CaseFile* c, const std::optional<std::filesystem::path>
                    const std::optional<std::filesystem::path>& report,
                    const std::optional<std::filesystem::path>& plot = std::nullopt);
 
-/// Writes `moved` with its per-cell quality to `output` when the run reached its goal (a
-/// method writes no mesh otherwise, DESIGN §3.1).
 /// How a method's mesh is written: its per-cell quality as cell data, `point_vectors` as point data.
 WriteOptions mesh_options(const QualityReport& q, const std::map<std::string, Eigen::MatrixXd>& point_vectors);
 
-void write_result_mesh(const Report& report, const Mesh& moved, const QualityReport& q,
-                       const std::optional<std::filesystem::path>& output,
+/// Whether a run's mesh is written (DESIGN §3.1): when the run reached its goal, or when its
+/// runner marks the result "improved" in run.extra (optimize, untangle: valid and better than
+/// the input although the goal was not reached).
+bool writes_mesh(const RunOutput& run);
+
+/// Writes run.moved with its per-cell quality to `output` where writes_mesh(run).
+void write_result_mesh(const RunOutput& run, const std::optional<std::filesystem::path>& output,
                        const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});
 
 /// The last lines of a method's summary (result, what was written, time) and its outcome.
+/// `kept`: a mesh was written although the goal was not reached (writes_mesh).
 Outcome print_result(std::ostream& out, const Report& report, const std::optional<std::filesystem::path>& output,
-                     int step_files = 0);
+                     int step_files = 0, bool kept = false);
 
 /// The case file `input` names (a .json path), or none for a bare mesh.
 std::optional<CaseFile> case_or_mesh(const std::string& input);

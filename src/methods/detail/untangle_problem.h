@@ -26,6 +26,8 @@ namespace meshmorph {
 /// A slide node keeps its d DOFs as unknowns and is held on its plane by SlideConstraints
 /// (energy/slide_constraints.h): its frame constrains the gradient and Hessian of every
 /// evaluation and the predictor, and every trial and accepted point returns to the plane.
+/// The nodes of `surfaces` are unknowns held on those level sets the same way, whatever
+/// their role in `bc` (a node of two entries on their common curve).
 template <int d>
 class UntangleProblem final : public NewtonProblem {
  public:
@@ -37,7 +39,7 @@ class UntangleProblem final : public NewtonProblem {
   };
 
   UntangleProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc,
-                  UntangleReference reference, double n, int threads);
+                  UntangleReference reference, double n, int threads, const std::vector<FitTerm>& surfaces = {});
 
   std::size_t n_free() const { return dofs_.n_free(); }
   const DofMap& dofs() const { return dofs_; }
