@@ -80,9 +80,8 @@ void AmgHierarchy::build_given_level(std::vector<double>& weights) {
   L.P = first_;
   L.R = transpose(L.P, threads);
   Level next;
-  L.AP = multiply(L.A, L.P, L.row_block, threads);
   L.product_block = product_block(L);
-  next.own = multiply(L.R, L.AP, L.product_block, threads);
+  galerkin(L.A, L.P, L.R, L.row_block, L.product_block, next.own, false, threads);
   const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
   next.block = b;
   levels_.push_back(std::move(next));
@@ -102,8 +101,7 @@ bool AmgHierarchy::refresh(const SparseView& A) {
   const int threads = std::max(1, options_.threads);
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     Level& L = levels_[l];
-    multiply_values(L.A, L.P, L.AP, L.product_block, threads);
-    multiply_values(L.R, L.AP, levels_[l + 1].own, L.product_block, threads);
+    if (!galerkin(L.A, L.P, L.R, L.row_block, L.product_block, levels_[l + 1].own, true, threads)) return false;
     if (!prepare_level(levels_[l + 1])) return false;
   }
   return coarse_.factorize(levels_.back().A);
@@ -111,7 +109,8 @@ bool AmgHierarchy::refresh(const SparseView& A) {
 
 int AmgHierarchy::product_block(const Level& L) {
   const int b = L.block;
-  return L.row_block == b && has_block_rows(L.P, b) && has_block_rows(L.R, b) && has_block_rows(L.AP, b) ? b : 1;
+  // A P has block rows where A and P have (multiply's node-by-node pattern).
+  return L.row_block == b && has_block_rows(L.P, b) && has_block_rows(L.R, b) ? b : 1;
 }
 
 bool AmgHierarchy::prepare_level(Level& L) {
@@ -178,10 +177,9 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
     }
   }
   L.R = transpose(L.P, threads);
-  L.AP = multiply(A, L.P, L.row_block, threads);
   L.product_block = product_block(L);
   Level next;
-  next.own = multiply(L.R, L.AP, L.product_block, threads);
+  galerkin(A, L.P, L.R, L.row_block, L.product_block, next.own, false, threads);
   next.block = b;
   levels_.push_back(std::move(next));
   levels_.back().A = levels_.back().own.view();

@@ -210,6 +210,38 @@ TEST(AmgCsr, ProductValuesOfKnownPatternsMatchAFreshProduct) {
   }
 }
 
+// The coarse operator slice by slice (A P never whole) is the two products' operator to the
+// last bit, on one thread and on two, by the scalar and the block route; with values_only it
+// follows new values of A the same way.
+TEST(AmgCsr, GalerkinSliceBySliceIsTheWholeProductExactly) {
+  for (int dim : {2, 3}) {
+    Eigen::SparseMatrix<double> A = test::stiffness_matrix(dim, 5, true);
+    A.makeCompressed();
+    Eigen::SparseMatrix<double> B = A;
+    for (Eigen::Index k = 0; k < B.nonZeros(); ++k) B.valuePtr()[k] *= 1.0 + 0.3 * std::sin(static_cast<double>(k));
+    const detail::Csr P = random_block_prolongator(static_cast<int>(A.rows()), 7, dim, 5);
+    const detail::Csr R = detail::transpose(P, 2);
+    const int row_block = detail::has_block_rows(detail::view_of(A), dim) ? dim : 1;
+    ASSERT_EQ(row_block, dim);
+    for (int block : {1, dim})
+      for (int threads : {1, 2}) {
+        SCOPED_TRACE(::testing::Message() << dim << "D, block " << block << ", " << threads << " threads");
+        const detail::Csr whole = detail::multiply(R, detail::multiply(detail::view_of(A), P, row_block, 2), block, 2);
+        detail::Csr C;
+        ASSERT_TRUE(detail::galerkin(detail::view_of(A), P, R, row_block, block, C, false, threads));
+        EXPECT_EQ(C.ptr, whole.ptr);
+        EXPECT_EQ(C.idx, whole.idx);
+        EXPECT_EQ(C.val, whole.val);
+        const detail::Csr next = detail::multiply(R, detail::multiply(detail::view_of(B), P, row_block, 2), block, 2);
+        ASSERT_TRUE(detail::galerkin(detail::view_of(B), P, R, row_block, block, C, true, threads));
+        EXPECT_EQ(C.idx, next.idx);
+        EXPECT_EQ(C.val, next.val);
+        detail::Csr wrong = P;
+        EXPECT_FALSE(detail::galerkin(detail::view_of(B), P, R, row_block, block, wrong, true, threads));
+      }
+  }
+}
+
 // refresh() recomputes the coarse operators of a new matrix through the kept prolongators:
 // right after setup() it changes nothing (the same V-cycle to rounding), and for a matrix
 // whose rows near the boundary jumped by 1e6 (a penalty increase) CG needs the iterations of

@@ -84,7 +84,7 @@ class MorphRunner {
   MorphSettings settings_;
   Mesh input_;
   Topology topology_;
-  std::unique_ptr<BoundaryMotion> motion_;  // points to input_ and topology_
+  std::unique_ptr<BoundaryMotion> motion_;  // points to input_
   std::unique_ptr<Morpher> morpher_;        // options.method "morph"
   Eigen::MatrixXd x_;
   int steps_ = 1;

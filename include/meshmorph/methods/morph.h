@@ -114,7 +114,9 @@ struct MorphResult {
 class Morpher {
  public:
   /// `input` (its coordinates are the distortion targets), `topology` and `bc` must outlive
-  /// the Morpher. Throws InputError when the input mesh has an inverted element.
+  /// the Morpher, except with MorphOptions::renumber (the default): it then solves on copies
+  /// of its own in locality order and reads them only here. Throws InputError when the input
+  /// mesh has an inverted element.
   Morpher(const Mesh& input, const Topology& topology, const BoundaryTargets& bc, MorphOptions options);
   ~Morpher();
   Morpher(const Morpher&) = delete;

@@ -64,8 +64,7 @@ class AmgHierarchy {
     SparseView A;    // the operator (level 0: the caller's matrix; else `own`)
     Csr own;
     Csr P, R;        // prolongator to this level from the next, and its transpose
-    Csr AP;          // A P, whose pattern refresh() refills
-    int product_block = 1;  // block of A, P, R and AP where all four have block rows, else 1
+    int product_block = 1;  // block of A, P and R where all three have block rows, else 1
     std::vector<double> inv_diag;  // 1 / a_ii
     std::vector<double> inv_l1;    // 1 / Σ_j |a_ij|, the smoother's diagonal
     int block = 1;
@@ -74,7 +73,7 @@ class AmgHierarchy {
   };
   // Block rows, inverse diagonal and ℓ1 diagonal (false if a diagonal entry is ≤ 0), work vectors.
   bool prepare_level(Level& L);
-  static int product_block(const Level& L);  // Level::product_block of a level with P, R, AP built
+  static int product_block(const Level& L);  // Level::product_block of a level with P and R built
   void residual_of(Level& L) const;  // L.r = L.b − A L.x
   bool build_level(std::size_t l, std::vector<double>& weights);
   void build_given_level(std::vector<double>& weights);  // level 1 through first_

@@ -50,6 +50,16 @@ Csr multiply(const Csr& A, const Csr& B, int block, int threads);
 void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads);
 void multiply_values(const Csr& A, const Csr& B, Csr& C, int block, int threads);
 
+/// The coarse operator C = R A P of a multigrid level (R = Pᵀ) with A P formed for a sixteenth
+/// of A's rows at a time and added to C, so that it is never held whole (on the §5.2 shells
+/// A P holds 1.1 entries per entry of A). `row_block`: the block rows of A and P; `block`:
+/// those of R and A P for the second product. C comes out exactly as multiply(R, multiply(A,
+/// P, row_block), block) computes it. With `values_only`, C keeps the pattern of an earlier
+/// galerkin() of the same patterns and only its values are recomputed (false where C does not
+/// have R's rows and P's columns).
+bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C, bool values_only,
+              int threads);
+
 double dot(const double* a, const double* b, int n, int threads);
 
 }  // namespace meshmorph::detail

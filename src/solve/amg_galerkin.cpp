@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// The coarse operator of a multigrid level, R A P, with A P formed a slice of rows at a time.
+#include <algorithm>
+
+#include "solve/detail/amg_csr.h"
+
+namespace meshmorph::detail {
+namespace {
+
+// A fixed count (not one per thread) keeps the hierarchy the same on any number of threads.
+constexpr int kSlices = 16;
+
+// C's pattern, node by node (nodes of `n` rows and columns, n = 1: entries): the coarse
+// nodes K reached from coarse node I through R's fine nodes J, A's neighbours L and P.
+Csr galerkin_pattern(const SparseView& A, const Csr& P, const Csr& R, int n, int threads) {
+  Csr C;
+  C.rows = R.rows;
+  C.cols = P.cols;
+  const int n_nodes = R.rows / n;
+  std::vector<std::vector<int>> blocks(static_cast<std::size_t>(n_nodes));
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> marker(static_cast<std::size_t>(P.cols / n), -1);
+#pragma omp for schedule(dynamic, 64)
+    for (int I = 0; I < n_nodes; ++I) {
+      std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
+      for (int kr = R.ptr[I * n]; kr < R.ptr[I * n + 1]; kr += n) {
+        const int j = R.idx[kr];
+        for (int ka = A.outer[j]; ka < A.outer[j + 1]; ka += n) {
+          const int l = A.inner[ka];
+          for (int kp = P.ptr[l]; kp < P.ptr[l + 1]; kp += n) {
+            const int K = P.idx[kp] / n;
+            if (marker[K] != I) marker[K] = I, row.push_back(K);
+          }
+        }
+      }
+      std::sort(row.begin(), row.end());
+    }
+  }
+  C.ptr.assign(static_cast<std::size_t>(C.rows) + 1, 0);
+  for (int I = 0; I < n_nodes; ++I)
+    for (int r = 0; r < n; ++r)
+      C.ptr[I * n + r + 1] = C.ptr[I * n + r] + n * static_cast<int>(blocks[static_cast<std::size_t>(I)].size());
+  C.idx.resize(static_cast<std::size_t>(C.ptr.back()));
+  C.val.resize(static_cast<std::size_t>(C.ptr.back()));
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int I = 0; I < n_nodes; ++I) {
+    std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
+    for (int r = 0; r < n; ++r) {
+      int k = C.ptr[I * n + r];
+      for (const int K : row)
+        for (int c = 0; c < n; ++c) C.idx[static_cast<std::size_t>(k++)] = K * n + c;
+    }
+    std::vector<int>().swap(row);
+  }
+  return C;
+}
+
+// C += R(:, first..) AP for the rows of A P from fine row `first` on (AP's row 0), in N×N
+// blocks: per pair of blocks the sums multiply_values() forms, in the same order, so that
+// the slices add up to its C exactly.
+template <int N>
+void add_slice(const Csr& R, const Csr& AP, int first, Csr& C, int threads) {
+  const int last = first + AP.rows;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> slot(static_cast<std::size_t>(C.cols / N), -1);
+#pragma omp for schedule(dynamic, 64)
+    for (int I = 0; I < C.rows / N; ++I) {
+      const int* begin = R.idx.data() + R.ptr[I * N];
+      const int* end = R.idx.data() + R.ptr[I * N + 1];
+      const int k0 = static_cast<int>(std::lower_bound(begin, end, first) - begin);
+      const int k1 = static_cast<int>(std::lower_bound(begin, end, last) - begin);
+      if (k0 == k1) continue;
+      const int c0 = C.ptr[I * N], cw = C.ptr[I * N + 1] - c0;
+      double* crow[N];
+      for (int r = 0; r < N; ++r) crow[r] = C.val.data() + C.ptr[I * N + r];
+      for (int k = 0; k < cw; k += N) slot[C.idx[c0 + k] / N] = k;
+      for (int ka = k0; ka < k1; ka += N) {
+        double a[N][N];
+        for (int r = 0; r < N; ++r)
+          for (int m = 0; m < N; ++m) a[r][m] = R.val[R.ptr[I * N + r] + ka + m];
+        const int J = (begin[ka] - first) / N;
+        const int b0 = AP.ptr[J * N], bw = AP.ptr[J * N + 1] - b0;
+        const double* brow[N];
+        for (int m = 0; m < N; ++m) brow[m] = AP.val.data() + AP.ptr[J * N + m];
+        for (int kb = 0; kb < bw; kb += N) {
+          const int off = slot[AP.idx[b0 + kb] / N];
+          for (int r = 0; r < N; ++r)
+            for (int c = 0; c < N; ++c) {
+              double s = 0.0;
+              for (int m = 0; m < N; ++m) s += a[r][m] * brow[m][kb + c];
+              crow[r][off + c] += s;
+            }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C, bool values_only,
+              int threads) {
+  if (!values_only) C = galerkin_pattern(A, P, R, block, threads);
+  if (C.rows != R.rows || C.cols != P.cols) return false;
+  std::fill(C.val.begin(), C.val.end(), 0.0);
+  // Slices of whole nodes of A's rows and of R's columns.
+  const int node = std::max(row_block, block);
+  const int step = std::max(1, (A.n / node + kSlices - 1) / kSlices) * node;
+  for (int first = 0; first < A.n; first += step) {
+    const int rows = std::min(step, A.n - first);
+    const Csr AP = multiply(SparseView{rows, A.outer + first, A.inner, A.values}, P, row_block, threads);
+    if (block == 3)
+      add_slice<3>(R, AP, first, C, threads);
+    else if (block == 2)
+      add_slice<2>(R, AP, first, C, threads);
+    else
+      add_slice<1>(R, AP, first, C, threads);
+  }
+  return true;
+}
+
+}  // namespace meshmorph::detail
