@@ -70,6 +70,11 @@ struct FlatEdges {
 };
 FlatEdges flat_edges(const Mesh& mesh, const std::vector<std::uint8_t>& fitted);
 
+/// The mean over the mesh (weighted by volume) of the shape metric μ2 (2D) / μ303 (3D)
+/// against the ideal target: 0 on a mesh of squares or cubes, about 0.15 on right
+/// triangles. Fit takes the input target when it is large (docs/fit.md, Choices).
+double mean_shape_distortion(const Mesh& mesh);
+
 /// Parameters of fitting (paper 003 Algorithm 1); defaults are the paper's.
 struct FitOptions {
   std::string metric;            ///< "" = mu2 in 2D, mu303 in 3D (eq. 17)
