@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "app/detail/method_output.h"
@@ -155,7 +156,8 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   });
   if (settings.pillow == "true" && mesh.order() != 1)
     throw InputError(where + ": options.pillow: pillowing needs a linear mesh (raise it with \"order\")");
-  const bool may_pillow = settings.pillow != "false" && tensor && mesh.order() == 1 && (mesh.dim == 3 || settings.pillow == "true");
+  const bool may_pillow = settings.pillow == "true" ||
+                          (settings.pillow == "auto" && tensor && mesh.order() == 1 && mesh.dim == 3 && !settings.fit.flat_edges);
   const bool reduce_crowding = !settings.fit.flat_edges && !may_pillow;
   const bool split = settings.split && !may_pillow;
   std::vector<std::string> pillowed_sides;
@@ -164,7 +166,12 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   const auto pillow_side = [&](const std::vector<std::vector<std::uint8_t>>& marked, const std::string& name) {
     const bool crowded = std::ranges::any_of(marked, [](const std::vector<std::uint8_t>& m) { return std::ranges::count(m, 1) >= 2; });
     if (!may_pillow || !crowded) return std::optional<Pillowed>();
-    Pillowed p = pillow(mesh, build_topology(mesh), marked);
+    Pillowed p;
+    try {
+      p = pillow(mesh, build_topology(mesh), marked);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(where + ": options.pillow: " + e.what());
+    }
     if (count_invalid_cells(p.mesh) > 0) throw InputError(where + ": pillowing the " + name + " left an invalid cell");
     mesh = std::move(p.mesh);
     s.pillowed_cells += p.added;
@@ -251,7 +258,10 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
       why = "cells with two or more fitted facets on the ";
       for (std::size_t k = 0; k < pillowed_sides.size(); ++k) why += (k ? " and the " : "") + pillowed_sides[k];
     } else if (!may_pillow) {
-      why = mesh.order() != 1 ? "the input mesh is not linear" : settings.pillow == "auto" ? "no hexahedra" : "no quadrilaterals or hexahedra";
+      why = mesh.order() != 1            ? "the input mesh is not linear"
+            : settings.fit.flat_edges      ? "flat_edges lets cells keep two fitted facets"
+            : !tensor || mesh.dim == 2     ? "no hexahedra"
+                                           : "no cell with two or more fitted facets";
     }
     choices["pillow"] = {{"value", s.pillowed_cells > 0}, {"cells_added", s.pillowed_cells}, {"why", why}};
   }
