@@ -188,7 +188,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     trim.emplace(checked_level_set(*c.trim, mesh, lso, where + ": trim"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
-    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding);
+    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding, mesh.dim == 3);
     if (split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, keep);
       split_count += to_split.size();
@@ -224,7 +224,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
           eta.push_back(!block.physical.empty() && block.physical[k] == group->tag ? 1 : 0);
       choices["materials"] = {{"value", settings.materials}, {"why", "given"}};
     } else {
-      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, reduce_crowding);
+      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, reduce_crowding, mesh.dim == 3);
       choices["materials"] = {{"value", "eq. 10-12"},
                               {"why", reduce_crowding ? "the level set's sign over each cell, corrected so that few cells keep two or more "
                                                         "interface facets (cells and vertex stars flipped)"

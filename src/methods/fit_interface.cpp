@@ -69,7 +69,8 @@ std::vector<int> interface_facet_counts(const Topology& topology, const std::vec
 }
 
 std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
-                                             std::vector<std::int32_t>& to_split, bool reduce_crowding) {
+                                             std::vector<std::int32_t>& to_split, bool reduce_crowding,
+                                             bool vertex_stars) {
   const auto marked = [&](std::size_t c) {
     int m = 0;
     for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k) {
@@ -129,7 +130,7 @@ std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vect
       const auto cell = static_cast<std::int32_t>(c);
       if (marked(c) >= 2 && improves({&cell, 1}, static_cast<std::uint8_t>(1 - eta[c]))) changed = true;
     }
-    for (std::size_t v = 0; v < n_nodes && !changed; ++v) {
+    for (std::size_t v = 0; v < n_nodes && vertex_stars && !changed; ++v) {
       const std::span<const std::int32_t> star = topology.cells_of(v);
       if (std::ranges::none_of(star, [&](std::int32_t c) { return marked(static_cast<std::size_t>(c)) >= 2; })) continue;
       changed = improves(star, 0) || improves(star, 1);

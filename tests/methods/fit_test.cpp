@@ -171,8 +171,8 @@ TEST(FitInterface, VertexStarFlipsClearTheTetrahedraOfASphere) {
   ls.shape = SphereLevelSet{Eigen::Vector3d::Constant(0.5), 0.3};
   const std::vector<std::uint8_t> raw = material_indicators(mesh, LevelSetFunction(ls, 3));
   std::vector<std::int32_t> with, without;
-  correct_indicators(topo, raw, with, true);
-  correct_indicators(topo, raw, without, false);
+  correct_indicators(topo, raw, with, true, true);
+  correct_indicators(topo, raw, without, true, false);
   EXPECT_GT(without.size(), 0u);
   EXPECT_EQ(with.size(), 0u);
 }
