@@ -160,6 +160,8 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
                           (settings.pillow == "auto" && tensor && mesh.order() == 1 && mesh.dim == 3 && !settings.fit.flat_edges);
   const bool reduce_crowding = !settings.fit.flat_edges && !may_pillow;
   const bool split = settings.split && !may_pillow;
+  // Vertex-star flips on tetrahedra (no split follows in 3D; hexahedra are pillowed instead).
+  const bool stars = std::ranges::any_of(mesh.cells, [](const CellBlock& b) { return b.type == ElementType::Tetrahedron; });
   std::vector<std::string> pillowed_sides;
   // Pillows the cells with a flag in `marked` when one of them has two or more, and maps
   // `per_cell` (one entry per cell) onto the new cells; returns the pillowed mesh's sources.
@@ -188,7 +190,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     trim.emplace(checked_level_set(*c.trim, mesh, lso, where + ": trim"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
-    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding, mesh.dim == 3);
+    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding, stars);
     if (split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, keep);
       split_count += to_split.size();
@@ -224,7 +226,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
           eta.push_back(!block.physical.empty() && block.physical[k] == group->tag ? 1 : 0);
       choices["materials"] = {{"value", settings.materials}, {"why", "given"}};
     } else {
-      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, reduce_crowding, mesh.dim == 3);
+      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, reduce_crowding, stars);
       choices["materials"] = {{"value", "eq. 10-12"},
                               {"why", reduce_crowding ? "the level set's sign over each cell, corrected so that few cells keep two or more "
                                                         "interface facets (cells and vertex stars flipped)"

@@ -28,7 +28,7 @@ std::vector<int> interface_facet_counts(const Topology& topology, const std::vec
 /// more interface facets flips when that lowers the count of such cells among it and its
 /// neighbours, until no flip helps; with `vertex_stars` also every cell around a vertex of
 /// such a cell takes one indicator when that lowers the count among them and their
-/// neighbours (fit uses them in 3D, where no split follows). The cells left with two or more
+/// neighbours (fit uses them on tetrahedra, where no split follows). The cells left with two or more
 /// are listed in `to_split` (global cell indices). Returns the corrected indicators.
 std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
                                              std::vector<std::int32_t>& to_split, bool reduce_crowding = true,
