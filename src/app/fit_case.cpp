@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/detail/fit_pillowing.h"
 #include "app/detail/method_output.h"
 #include "app/detail/solver_option.h"
 #include "meshmorph/app/option_reader.h"
@@ -163,11 +164,11 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   // Vertex-star flips on tetrahedra (no split follows in 3D; hexahedra are pillowed instead).
   const bool stars = std::ranges::any_of(mesh.cells, [](const CellBlock& b) { return b.type == ElementType::Tetrahedron; });
   std::vector<std::string> pillowed_sides;
+  std::size_t filled = 0;
   // Pillows the cells with a flag in `marked` when one of them has two or more, and maps
   // `per_cell` (one entry per cell) onto the new cells; returns the pillowed mesh's sources.
   const auto pillow_side = [&](const std::vector<std::vector<std::uint8_t>>& marked, const std::string& name) {
-    const bool crowded = std::ranges::any_of(marked, [](const std::vector<std::uint8_t>& m) { return std::ranges::count(m, 1) >= 2; });
-    if (!may_pillow || !crowded) return std::optional<Pillowed>();
+    if (!may_pillow || !detail::crowded(marked)) return std::optional<Pillowed>();
     Pillowed p;
     try {
       p = pillow(mesh, build_topology(mesh), marked);
@@ -191,6 +192,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
     std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding, stars);
+    if (may_pillow && detail::crowded(detail::facets_of_side(topo, keep, 1))) filled += detail::fill_saddles(mesh, topo, keep, 1);
     if (split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, keep);
       split_count += to_split.size();
@@ -237,16 +239,18 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
       mesh = split_cells(mesh, topo, to_split, eta);
       split_count += to_split.size();
     }
+    for (bool again = may_pillow; again;) {
+      again = false;
+      for (const std::uint8_t side : {std::uint8_t{1}, std::uint8_t{0}})
+        if (detail::crowded(detail::facets_of_side(topo, eta, side))) {
+          const std::size_t n = detail::fill_saddles(mesh, topo, eta, side);
+          filled += n;
+          again = again || n > 0;
+        }
+    }
     for (const std::uint8_t side : {std::uint8_t{1}, std::uint8_t{0}}) {
       topo = build_topology(mesh);
-      std::vector<std::vector<std::uint8_t>> marked(eta.size());
-      for (std::size_t k = 0; k < eta.size(); ++k) {
-        if (eta[k] != side) continue;
-        for (auto j = topo.cell_neighbor_offset[k]; j < topo.cell_neighbor_offset[k + 1]; ++j) {
-          const std::int32_t other = topo.cell_neighbors[static_cast<std::size_t>(j)];
-          marked[k].push_back(other >= 0 && eta[static_cast<std::size_t>(other)] != side);
-        }
-      }
+      const std::vector<std::vector<std::uint8_t>> marked = detail::facets_of_side(topo, eta, side);
       if (const std::optional<Pillowed> p = pillow_side(marked, side ? "inside of the interface" : "outside of the interface")) {
         std::vector<std::uint8_t> moved(p->source.size());
         for (std::size_t k = 0; k < moved.size(); ++k) moved[k] = eta[static_cast<std::size_t>(p->source[k])];
@@ -265,7 +269,7 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
             : !tensor || mesh.dim == 2     ? "no hexahedra"
                                            : "no cell with two or more fitted facets";
     }
-    choices["pillow"] = {{"value", s.pillowed_cells > 0}, {"cells_added", s.pillowed_cells}, {"why", why}};
+    choices["pillow"] = {{"value", s.pillowed_cells > 0}, {"cells_added", s.pillowed_cells}, {"saddle_cells_filled", filled}, {"why", why}};
   }
   if (!settings.target_given) {
     const double distortion = s.pillowed_cells > 0 ? 0.0 : mean_shape_distortion(mesh);

@@ -12,6 +12,9 @@ namespace meshmorph {
 namespace {
 
 constexpr int kMaxCorners = 8;
+// The least cosine between a copy's move and the inward normal of a flagged facet at its
+// node: 1 on a flat surface, 1/sqrt(3) at a convex corner of a staircase.
+constexpr double kMinCosine = 0.2;
 
 // The local facet of a cell family whose corners are exactly `corners` (any order).
 int facet_with_corners(ElementType type, std::vector<int> corners) {
@@ -30,10 +33,26 @@ struct AddedCell {
   std::int32_t physical = 0, entity = 0, source = 0;
 };
 
-}  // namespace
+// The unit normal of local facet `f` of a linear quadrilateral / hexahedron (corners v),
+// towards the cell.
+Eigen::VectorXd inward_normal(const Mesh& mesh, ElementType type, const std::int32_t* v, const std::vector<int>& f) {
+  Eigen::VectorXd n(mesh.dim), centre = Eigen::VectorXd::Zero(mesh.dim), cell = centre;
+  for (int a : f) centre += mesh.x.col(v[a]) / static_cast<double>(f.size());
+  for (int a = 0; a < n_corners_of(type); ++a) cell += mesh.x.col(v[a]) / n_corners_of(type);
+  if (mesh.dim == 2) {
+    const Eigen::Vector2d e = mesh.x.col(v[f[1]]) - mesh.x.col(v[f[0]]);
+    n = Eigen::Vector2d(-e.y(), e.x());
+  } else {
+    const Eigen::Vector3d d1 = mesh.x.col(v[f[2]]) - mesh.x.col(v[f[0]]), d2 = mesh.x.col(v[f[3]]) - mesh.x.col(v[f[1]]);
+    n = d1.cross(d2);
+  }
+  if (n.dot(cell - centre) < 0.0) n = -n;
+  return n.normalized();
+}
 
-Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<std::vector<std::uint8_t>>& marked,
-                double depth) {
+// pillow(), or with `plan_only` the saddles alone (nothing built).
+Pillowed build(const Mesh& mesh, const Topology& topology, const std::vector<std::vector<std::uint8_t>>& marked,
+               double depth, std::vector<std::int32_t>& saddles, bool plan_only) {
   const std::size_t n_cells = mesh.n_cells();
   if (marked.size() != n_cells) throw std::invalid_argument("pillow: one list of facet flags per cell");
   const auto cell_of = [&](std::int32_t c) {
@@ -125,6 +144,20 @@ Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<st
       }
       const Eigen::VectorXd x = mesh.x.col(static_cast<Eigen::Index>(node));
       const Eigen::VectorXd towards = n_along > 0 ? Eigen::VectorXd(along / n_along) : Eigen::VectorXd(inner / n_inner);
+      // The copy must move into the side across every flagged facet at the node, or a new
+      // cell folds (a saddle: the side's cells around it lie on opposite sides of it).
+      bool folds = (towards - x).norm() == 0.0;
+      for (std::size_t i = 0; i < cells.size() && !folds; ++i) {
+        if (find(i) != r) continue;
+        const auto [block, v] = cell_of(cells[i]);
+        const int a = local_index(cells[i], static_cast<std::int32_t>(node));
+        const std::span<const std::vector<int>> facets = corner_facets(block.type);
+        for (std::size_t f = 0; f < facets.size() && !folds; ++f)
+          if (std::ranges::count(facets[f], a) && flagged(cells[i], static_cast<int>(f)))
+            folds = inward_normal(mesh, block.type, v, facets[f]).dot(towards - x) <= kMinCosine * (towards - x).norm();
+      }
+      if (folds) saddles.push_back(static_cast<std::int32_t>(node));
+      if (plan_only) continue;
       const auto index = static_cast<std::int32_t>(mesh.n_nodes() + new_x.size());
       new_x.push_back(x + depth * (towards - x));
       copied.push_back(static_cast<std::int32_t>(node));
@@ -133,6 +166,7 @@ Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<st
           copy[static_cast<std::size_t>(cells[i]) * kMaxCorners + static_cast<std::size_t>(local_index(cells[i], static_cast<std::int32_t>(node)))] = index;
     }
   }
+  if (plan_only) return {};
   const auto position = [&](std::int32_t node) {
     return node < static_cast<std::int32_t>(mesh.n_nodes()) ? Eigen::VectorXd(mesh.x.col(node))
                                                              : new_x[static_cast<std::size_t>(node) - mesh.n_nodes()];
@@ -228,6 +262,27 @@ Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<st
     for (auto& [name, field] : out.mesh.node_fields) field[n_old + i] = field[from];
   }
   return out;
+}
+
+}  // namespace
+
+Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<std::vector<std::uint8_t>>& marked,
+                double depth) {
+  std::vector<std::int32_t> saddles;
+  Pillowed out = build(mesh, topology, marked, depth, saddles, false);
+  if (!saddles.empty())
+    throw std::invalid_argument("pillow: the layer would fold at " + std::to_string(saddles.size()) +
+                                " saddle nodes of the surface (pillow_saddles)");
+  return out;
+}
+
+std::vector<std::int32_t> pillow_saddles(const Mesh& mesh, const Topology& topology,
+                                         const std::vector<std::vector<std::uint8_t>>& marked) {
+  std::vector<std::int32_t> saddles;
+  build(mesh, topology, marked, 0.5, saddles, true);
+  std::ranges::sort(saddles);
+  saddles.erase(std::unique(saddles.begin(), saddles.end()), saddles.end());
+  return saddles;
 }
 
 }  // namespace meshmorph

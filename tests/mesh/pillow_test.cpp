@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
@@ -174,6 +175,22 @@ TEST(Pillow, CopiesOnTheOuterBoundaryStayOnIt) {
   for (std::size_t k = 0; k < p.mesh.facets[0].n_cells(); ++k)
     for (int a = 0; a < 2; ++a)
       EXPECT_TRUE(std::ranges::binary_search(after.boundary_corners, p.mesh.facets[0].cell(k)[a])) << "facet " << k;
+}
+
+// Six of the eight cubes around the centre of a 2x2x2 grid (two opposite ones left out): the
+// side lies on both sides of the centre, whose copy cannot move into every cube, so the centre
+// is a saddle and pillow() refuses; with every cube around it on the side, no saddle is left.
+TEST(Pillow, OppositeOctantsMakeASaddle) {
+  const Mesh mesh = grid(3, 2);
+  const Topology topo = build_topology(mesh);
+  std::vector<std::uint8_t> side(8, 1);
+  side[0] = side[7] = 0;
+  const std::vector<std::vector<std::uint8_t>> marked = surface_of(topo, side, false);
+  EXPECT_EQ(pillow_saddles(mesh, topo, marked), std::vector<std::int32_t>{13});
+  EXPECT_THROW(pillow(mesh, topo, marked), std::invalid_argument);
+  side[0] = 1;
+  EXPECT_TRUE(pillow_saddles(mesh, topo, surface_of(topo, side, false)).empty());
+  EXPECT_EQ(pillow(mesh, topo, surface_of(topo, side, false)).added, 3u);
 }
 
 }  // namespace

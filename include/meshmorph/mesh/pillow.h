@@ -35,8 +35,17 @@ struct Pillowed {
 /// copy the tags (numbered after the largest) and field values of the nodes they copy.
 ///
 /// Only linear quadrilaterals and hexahedra can carry flags (the new cells are of their
-/// type); raise the order afterwards. Throws std::invalid_argument otherwise.
+/// type); raise the order afterwards. Throws std::invalid_argument otherwise, and where the
+/// surface has saddle nodes (pillow_saddles).
 Pillowed pillow(const Mesh& mesh, const Topology& topology, const std::vector<std::vector<std::uint8_t>>& marked,
                 double depth = 0.5);
+
+/// The surface nodes (sorted) where pillow() would fold a new cell: a copy's move (towards
+/// its group's centroid) makes an angle of more than about 78° with the inward normal of a
+/// flagged facet of the group at the node, as where the side's cells around a node lie in
+/// opposite octants. Giving every cell around such a node to the side removes it from the
+/// surface.
+std::vector<std::int32_t> pillow_saddles(const Mesh& mesh, const Topology& topology,
+                                         const std::vector<std::vector<std::uint8_t>>& marked);
 
 }  // namespace meshmorph
