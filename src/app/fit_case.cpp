@@ -165,8 +165,8 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   const bool stars = std::ranges::any_of(mesh.cells, [](const CellBlock& b) { return b.type == ElementType::Tetrahedron; });
   std::vector<std::string> pillowed_sides;
   std::size_t filled = 0;
-  // Pillows the cells with a flag in `marked` when one of them has two or more, and maps
-  // `per_cell` (one entry per cell) onto the new cells; returns the pillowed mesh's sources.
+  // Pillows the side of `marked` when one of its cells has two or more flagged facets;
+  // returns where the new mesh's cells come from (nothing when it did not pillow).
   const auto pillow_side = [&](const std::vector<std::vector<std::uint8_t>>& marked, const std::string& name) {
     if (!may_pillow || !detail::crowded(marked)) return std::optional<Pillowed>();
     Pillowed p;
