@@ -27,11 +27,11 @@ UNTANGLE = [
     ("delta_rule", str, "continuation"), ("predictor", bool, True), ("max_newton", int, 300), _SOLVER,
 ]
 FIT = [
-    ("metric", str, None), ("target", str, "ideal"), ("weight0", float, 0.0), ("penalty0", float, 1.0),
-    ("weights", str, "adaptive"), ("alpha_sigma", float, 10.0), ("eps_dsigma", float, 1e-3), ("eps_sigma", float, 1e-5),
+    ("metric", str, None), ("target", str, None), ("weight0", float, 0.0), ("penalty0", float, 1.0),
+    ("weights", str, "adaptive"), ("alpha_sigma", float, 10.0), ("eps_dsigma", float, 1e-3), ("eps_sigma", float, None),
     ("n_sigma", int, 10), ("max_newton", int, 200), ("growth", float, 1.2), ("det_floor", float, 1e-3),
     ("flat_edges", bool, False), ("split", bool, True), ("level_set", str, "analytic"), ("materials", str, None),
-    _SOLVER,
+    ("pillow", str, "auto"), _SOLVER,
 ]
 DEFORM = [
     ("method", str, "eikonal"), ("cvt", bool, True), ("density", str, "uniform"), ("cvt_tolerance", float, 1e-4),

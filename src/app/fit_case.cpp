@@ -2,10 +2,13 @@
 #include "meshmorph/app/fit_case.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
+#include "app/detail/fit_pillowing.h"
 #include "app/detail/method_output.h"
 #include "app/detail/solver_option.h"
 #include "meshmorph/app/option_reader.h"
@@ -14,6 +17,7 @@
 #include "meshmorph/fem/trace.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/io/mesh_io.h"
+#include "meshmorph/mesh/pillow.h"
 
 namespace meshmorph {
 namespace {
@@ -64,6 +68,18 @@ void check_coverage(const LevelSet& ls, const Mesh& mesh, const std::string& whe
   }, ls.shape);
 }
 
+// The mean shape distortion of the input against the ideal target above which fit takes
+// the input target: regular cells (squares, cubes: 0) and right triangles (0.15) keep the
+// ideal target; cubes cut into 24 tetrahedra around their centre (0.5) take the input.
+constexpr double kInputTargetDistortion = 0.2;
+
+std::string format_distortion(double distortion) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "mean shape distortion of the input against the ideal target %.3g %s %.3g", distortion,
+                distortion > kInputTargetDistortion ? ">" : "<=", kInputTargetDistortion);
+  return buffer;
+}
+
 // A level set of the case, compiled after the checks above.
 LevelSetFunction checked_level_set(const LevelSet& ls, const Mesh& mesh, const LevelSetOptions& options,
                                    const std::string& where) {
@@ -81,6 +97,8 @@ FitSettings read_fit_settings(const CaseFile& c, int threads) {
   OptionReader r(c.options, c.file.string());
   r.read("metric", o.metric, {"mu2", "mu303", "mu77", "mu80"});
   std::string target = "ideal", weights = "adaptive";
+  s.target_given = r.has("target");
+  s.eps_sigma_given = r.has("eps_sigma");
   r.read("target", target, {"ideal", "input", "ideal_unit"});
   o.target = target_kind(target);
   r.read("weight0", o.weight0, 0.0, 1e30);
@@ -100,6 +118,13 @@ FitSettings read_fit_settings(const CaseFile& c, int threads) {
   r.read("level_set", level_set, {"analytic", "discrete"});
   s.discrete = level_set == "discrete";
   r.read("materials", s.materials);
+  if (const auto it = c.options.find("pillow"); it != c.options.end() && it->is_boolean()) {
+    bool on = false;
+    r.read("pillow", on);
+    s.pillow = on ? "true" : "false";
+  } else {
+    r.read("pillow", s.pillow, {"auto"});
+  }
   o.solver = detail::read_solver(r);
   r.finish();
   o.threads = threads;
@@ -118,6 +143,44 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   LevelSetOptions lso;
   lso.source = where;
   lso.length_scale = (mesh.x.rowwise().maxCoeff() - mesh.x.rowwise().minCoeff()).norm();
+  FitSetup s;
+  s.fit = settings.fit;
+  nlohmann::ordered_json& choices = s.choices;
+  if (!settings.eps_sigma_given) {
+    s.fit.eps_sigma = 1e-9 * lso.length_scale;
+    choices["eps_sigma"] = {{"value", s.fit.eps_sigma}, {"why", "1e-9 of the diagonal of the mesh's bounding box"}};
+  }
+  // Pillowing (docs/fit.md): a layer of cells on each side of the fitted surface that has a
+  // cell with two or more facets on it; "auto" pillows hexahedra only.
+  const bool tensor = std::ranges::any_of(mesh.cells, [&](const CellBlock& b) {
+    return b.type == ElementType::Hexahedron || (settings.pillow == "true" && b.type == ElementType::Quadrilateral);
+  });
+  if (settings.pillow == "true" && mesh.order() != 1)
+    throw InputError(where + ": options.pillow: pillowing needs a linear mesh (raise it with \"order\")");
+  const bool may_pillow = settings.pillow == "true" ||
+                          (settings.pillow == "auto" && tensor && mesh.order() == 1 && mesh.dim == 3 && !settings.fit.flat_edges);
+  const bool reduce_crowding = !settings.fit.flat_edges && !may_pillow;
+  const bool split = settings.split && !may_pillow;
+  // Vertex-star flips on tetrahedra (no split follows in 3D; hexahedra are pillowed instead).
+  const bool stars = std::ranges::any_of(mesh.cells, [](const CellBlock& b) { return b.type == ElementType::Tetrahedron; });
+  std::vector<std::string> pillowed_sides;
+  std::size_t filled = 0;
+  // Pillows the side of `marked` when one of its cells has two or more flagged facets;
+  // returns where the new mesh's cells come from (nothing when it did not pillow).
+  const auto pillow_side = [&](const std::vector<std::vector<std::uint8_t>>& marked, const std::string& name) {
+    if (!may_pillow || !detail::crowded(marked)) return std::optional<Pillowed>();
+    Pillowed p;
+    try {
+      p = pillow(mesh, build_topology(mesh), marked);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(where + ": options.pillow: " + e.what());
+    }
+    if (count_invalid_cells(p.mesh) > 0) throw InputError(where + ": pillowing the " + name + " left an invalid cell");
+    mesh = std::move(p.mesh);
+    s.pillowed_cells += p.added;
+    pillowed_sides.push_back(name);
+    return std::optional<Pillowed>(std::move(p));
+  };
 
   // Trim (§4.2): the cells outside the level set go (eq. 10, corrected like an interface),
   // and the new boundary is fitted.
@@ -128,14 +191,23 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     trim.emplace(checked_level_set(*c.trim, mesh, lso, where + ": trim"));
     Topology topo = build_topology(mesh);
     std::vector<std::int32_t> to_split;
-    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, !settings.fit.flat_edges);
-    if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
+    std::vector<std::uint8_t> keep = correct_indicators(topo, material_indicators(mesh, *trim), to_split, reduce_crowding, stars);
+    if (may_pillow && detail::crowded(detail::facets_of_side(topo, keep, 1))) filled += detail::fill_saddles(mesh, topo, keep, 1);
+    if (split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       mesh = split_cells(mesh, topo, to_split, keep);
       split_count += to_split.size();
       topo = build_topology(mesh);
     }
     mesh = trim_cells(mesh, topo, keep, cut);
     if (mesh.n_cells() == 0) throw InputError(where + ": trim: every cell lies outside the level set");
+    if (const std::optional<Pillowed> p = pillow_side(cut, "kept side of the trim")) {
+      std::vector<std::vector<std::uint8_t>> moved(p->source.size());
+      for (std::size_t k = 0; k < moved.size(); ++k) {
+        moved[k].assign(cut[static_cast<std::size_t>(p->source[k])].size(), 0);
+        if (p->surface_facet[k] >= 0) moved[k][static_cast<std::size_t>(p->surface_facet[k])] = 1;
+      }
+      cut = std::move(moved);
+    }
   }
 
   // Interface: material indicators (eq. 10), corrected (eq. 12), cells split where two of
@@ -154,14 +226,57 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
       for (const CellBlock& block : mesh.cells)
         for (std::size_t k = 0; k < block.n_cells(); ++k)
           eta.push_back(!block.physical.empty() && block.physical[k] == group->tag ? 1 : 0);
+      choices["materials"] = {{"value", settings.materials}, {"why", "given"}};
     } else {
-      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, !settings.fit.flat_edges);
+      eta = correct_indicators(topo, material_indicators(mesh, *interface), to_split, reduce_crowding, stars);
+      choices["materials"] = {{"value", "eq. 10-12"},
+                              {"why", reduce_crowding ? "the level set's sign over each cell, corrected so that few cells keep two or more "
+                                                        "interface facets (cells and vertex stars flipped)"
+                                                      : "the level set's sign over each cell, corrected by eq. 12 only"}};
     }
-    if (settings.split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
+    if (split && !to_split.empty() && mesh.order() == 1 && mesh.dim == 2) {
       if (trim) throw InputError(where + ": trim with an interface: give the interface's materials, or fit one at a time");
       mesh = split_cells(mesh, topo, to_split, eta);
       split_count += to_split.size();
     }
+    for (bool again = may_pillow; again;) {
+      again = false;
+      for (const std::uint8_t side : {std::uint8_t{1}, std::uint8_t{0}})
+        if (detail::crowded(detail::facets_of_side(topo, eta, side))) {
+          const std::size_t n = detail::fill_saddles(mesh, topo, eta, side);
+          filled += n;
+          again = again || n > 0;
+        }
+    }
+    for (const std::uint8_t side : {std::uint8_t{1}, std::uint8_t{0}}) {
+      topo = build_topology(mesh);
+      const std::vector<std::vector<std::uint8_t>> marked = detail::facets_of_side(topo, eta, side);
+      if (const std::optional<Pillowed> p = pillow_side(marked, side ? "inside of the interface" : "outside of the interface")) {
+        std::vector<std::uint8_t> moved(p->source.size());
+        for (std::size_t k = 0; k < moved.size(); ++k) moved[k] = eta[static_cast<std::size_t>(p->source[k])];
+        eta = std::move(moved);
+      }
+    }
+  }
+  if (settings.pillow != "false" || s.pillowed_cells > 0) {
+    std::string why = "no cell with two or more fitted facets";
+    if (s.pillowed_cells > 0) {
+      why = "cells with two or more fitted facets on the ";
+      for (std::size_t k = 0; k < pillowed_sides.size(); ++k) why += (k ? " and the " : "") + pillowed_sides[k];
+    } else if (!may_pillow) {
+      why = mesh.order() != 1            ? "the input mesh is not linear"
+            : settings.fit.flat_edges      ? "flat_edges lets cells keep two fitted facets"
+            : !tensor || mesh.dim == 2     ? "no hexahedra"
+                                           : "no cell with two or more fitted facets";
+    }
+    choices["pillow"] = {{"value", s.pillowed_cells > 0}, {"cells_added", s.pillowed_cells}, {"saddle_cells_filled", filled}, {"why", why}};
+  }
+  if (!settings.target_given) {
+    const double distortion = s.pillowed_cells > 0 ? 0.0 : mean_shape_distortion(mesh);
+    s.fit.target = s.pillowed_cells > 0 || distortion > kInputTargetDistortion ? TargetKind::Input : TargetKind::Ideal;
+    choices["target"] = {{"value", target_name(s.fit.target)},
+                         {"why", s.pillowed_cells > 0 ? std::string("the pillowed layers are thin by design")
+                                                      : format_distortion(distortion)}};
   }
   if (c.order && below_order(mesh, *c.order)) mesh = elevate_order(mesh, *c.order);
   Topology topology = build_topology(mesh);
@@ -227,7 +342,12 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
                             : "the nodes on it are all fixed (boundary nodes are, unless a project or slide entry frees them)"));
   }
 
-  FitSetup s;
+  if (settings.fit.solver == LinearSolverKind::Auto) {
+    const auto n_free = static_cast<std::size_t>(std::ranges::count(fixed, 0));
+    const LinearSolverKind kind = resolve_linear_solver(LinearSolverKind::Auto, d, n_free, mesh.max_cell_nodes());
+    choices["solver"] = {{"value", kind == LinearSolverKind::Cholesky ? "cholesky" : "iterative"},
+                         {"why", std::to_string(n_free) + " unknowns (CG-AMG past 300k on P3 tetrahedra and P2/P3 hexahedra)"}};
+  }
   s.mesh = std::move(mesh);
   s.topology = std::move(topology);
   s.terms = std::move(terms);
@@ -251,7 +371,7 @@ RunOutput FitRunner::run() const {
   const FitSetup& setup = setup_;
   const FitSettings& settings = settings_;
   Eigen::MatrixXd x = setup.mesh.x;
-  const FitResult r = fit_to_level_sets(setup.mesh, setup.topology, setup.terms, setup.fixed, settings.fit, x);
+  const FitResult r = fit_to_level_sets(setup.mesh, setup.topology, setup.terms, setup.fixed, setup.fit, x);
   RunOutput o;
   Report& report = o.report;
   report.method = "fit";
@@ -285,6 +405,8 @@ RunOutput FitRunner::run() const {
   o.extra["split_cells"] = setup.split_cells;
   o.extra["cells_with_two_interface_facets"] = setup.two_facet_cells;
   if (settings.fit.flat_edges) o.extra["flat_edge_cells"] = r.flat;
+  o.extra["pillowed_cells"] = setup.pillowed_cells;
+  o.extra["choices"] = setup.choices;
   return o;
 }
 

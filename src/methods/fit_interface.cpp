@@ -69,7 +69,8 @@ std::vector<int> interface_facet_counts(const Topology& topology, const std::vec
 }
 
 std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
-                                             std::vector<std::int32_t>& to_split, bool reduce_crowding) {
+                                             std::vector<std::int32_t>& to_split, bool reduce_crowding,
+                                             bool vertex_stars) {
   const auto marked = [&](std::size_t c) {
     int m = 0;
     for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k) {
@@ -85,23 +86,54 @@ std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vect
       if (marked(c) == facets - 1 && facets > 2) eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
     }
   // Ours, beyond eq. 12 (which cannot help a tetrahedron or hexahedron with two interface
-  // facets of four or six): flip such a cell when that lowers the number of cells with two or
-  // more interface facets among it and its neighbours; sweep until no flip helps.
-  const auto crowded = [&](std::size_t c) {
-    int n = marked(c) >= 2 ? 1 : 0;
-    for (auto k = topology.cell_neighbor_offset[c]; k < topology.cell_neighbor_offset[c + 1]; ++k)
-      if (const std::int32_t other = topology.cell_neighbors[static_cast<std::size_t>(k)]; other >= 0)
-        n += marked(static_cast<std::size_t>(other)) >= 2 ? 1 : 0;
-    return n;
+  // facets of four or six): give a cell, or every cell around a vertex, one indicator when
+  // that lowers the number of cells with two or more interface facets among them and their
+  // neighbours; sweep until no change helps. The vertex stars reach what single flips cannot,
+  // such as a whole cube of a mesh that splits cubes into tetrahedra.
+  std::vector<std::uint32_t> stamp(eta.size(), 0);
+  std::uint32_t round = 0;
+  std::vector<std::int32_t> region;
+  const auto crowded_near = [&](std::span<const std::int32_t> cells) {
+    ++round;
+    region.clear();
+    const auto add = [&](std::int32_t c) {
+      if (c >= 0 && stamp[static_cast<std::size_t>(c)] != round) {
+        stamp[static_cast<std::size_t>(c)] = round;
+        region.push_back(c);
+      }
+    };
+    for (std::int32_t c : cells) {
+      add(c);
+      for (auto k = topology.cell_neighbor_offset[static_cast<std::size_t>(c)];
+           k < topology.cell_neighbor_offset[static_cast<std::size_t>(c) + 1]; ++k)
+        add(topology.cell_neighbors[static_cast<std::size_t>(k)]);
+    }
+    return std::ranges::count_if(region, [&](std::int32_t c) { return marked(static_cast<std::size_t>(c)) >= 2; });
   };
-  for (bool flipped = reduce_crowding; flipped;) {
-    flipped = false;
+  std::vector<std::uint8_t> saved;
+  const auto improves = [&](std::span<const std::int32_t> cells, std::uint8_t value) {
+    if (std::ranges::all_of(cells, [&](std::int32_t c) { return eta[static_cast<std::size_t>(c)] == value; })) return false;
+    const auto before = crowded_near(cells);
+    saved.clear();
+    for (std::int32_t c : cells) {
+      saved.push_back(eta[static_cast<std::size_t>(c)]);
+      eta[static_cast<std::size_t>(c)] = value;
+    }
+    if (crowded_near(cells) < before) return true;
+    for (std::size_t i = 0; i < cells.size(); ++i) eta[static_cast<std::size_t>(cells[i])] = saved[i];
+    return false;
+  };
+  const std::size_t n_nodes = topology.node_cell_offset.empty() ? 0 : topology.node_cell_offset.size() - 1;
+  for (bool changed = reduce_crowding; changed;) {
+    changed = false;
     for (std::size_t c = 0; c < eta.size(); ++c) {
-      if (marked(c) < 2) continue;
-      const int before = crowded(c);
-      eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
-      if (crowded(c) < before) flipped = true;
-      else eta[c] = static_cast<std::uint8_t>(1 - eta[c]);
+      const auto cell = static_cast<std::int32_t>(c);
+      if (marked(c) >= 2 && improves({&cell, 1}, static_cast<std::uint8_t>(1 - eta[c]))) changed = true;
+    }
+    for (std::size_t v = 0; v < n_nodes && vertex_stars && !changed; ++v) {
+      const std::span<const std::int32_t> star = topology.cells_of(v);
+      if (std::ranges::none_of(star, [&](std::int32_t c) { return marked(static_cast<std::size_t>(c)) >= 2; })) continue;
+      changed = improves(star, 0) || improves(star, 1);
     }
   }
   to_split.clear();

@@ -33,6 +33,9 @@ expect ok 0
 awk -v e="$(field "$work/ok.json" fit_error_max)" 'BEGIN { exit !(e <= 1e-8) }' || fail "ok: fit_error_max"
 [ "$(field "$work/ok.json" cells_with_two_interface_facets)" = 0 ] || fail "ok: a cell has two interface facets"
 "$mm" --quiet quality "$work/ok.vtu" > /dev/null || fail "ok: output invalid or unreadable"
+# What fit picked where the case left it open: the target and the solver, each with a reason.
+grep -q '"choices"' "$work/ok.json" && grep -q '"target"' "$work/ok.json" && grep -q '"why"' "$work/ok.json" || fail "ok: no choices in the report"
+[ "$(field "$work/ok.json" pillowed_cells)" = 0 ] || fail "ok: a quadrilateral mesh was pillowed by default"
 
 # The same circle through a distance field on a refined background mesh (paper 003 §3.1).
 make_case distance '{"distance": {"of": '"$circle"', "lower": [0, 0], "upper": [2, 1], "levels": 3}}' '{"eps_sigma": 1e-8}'

@@ -162,6 +162,29 @@ TEST(FitInterface, CrowdingFlipsLowerTheTwoFacetCells) {
   }
 }
 
+// The crowding pass (cells and vertex stars) leaves no tetrahedron of a structured mesh with
+// two interface facets on a sphere, where eq. 12 alone leaves some.
+TEST(FitInterface, VertexStarFlipsClearTheTetrahedraOfASphere) {
+  const Mesh mesh = structured_mesh(ElementType::Tetrahedron, 1, 6);
+  const Topology topo = build_topology(mesh);
+  LevelSet ls;
+  ls.shape = SphereLevelSet{Eigen::Vector3d::Constant(0.5), 0.3};
+  const std::vector<std::uint8_t> raw = material_indicators(mesh, LevelSetFunction(ls, 3));
+  std::vector<std::int32_t> with, without;
+  correct_indicators(topo, raw, with, true, true);
+  correct_indicators(topo, raw, without, true, false);
+  EXPECT_GT(without.size(), 0u);
+  EXPECT_EQ(with.size(), 0u);
+}
+
+// Fit's target choice measures the input against the ideal target: squares and cubes are
+// ideal (0), a right isosceles triangle has mu2 = 2/sqrt(3) - 1 against the equilateral one.
+TEST(FitChoices, MeanShapeDistortionOfStructuredMeshes) {
+  EXPECT_NEAR(mean_shape_distortion(structured_mesh(ElementType::Quadrilateral, 1, 4)), 0.0, 1e-14);
+  EXPECT_NEAR(mean_shape_distortion(structured_mesh(ElementType::Hexahedron, 1, 3)), 0.0, 1e-14);
+  EXPECT_NEAR(mean_shape_distortion(structured_mesh(ElementType::Triangle, 1, 4)), 2.0 / std::sqrt(3.0) - 1.0, 1e-12);
+}
+
 // Flat edges: a cell's samples on the edge (corner in 2D) where two of its fitted facets
 // meet, and no others; none between opposite facets or on a single fitted facet. (Linear
 // tetrahedra are left out: there a facet across the cube, with its vertices on the two

@@ -27,6 +27,10 @@ struct FitSettings {
   /// A volume group whose cells are material 1 (the others 0): the interface is taken as
   /// given, in place of eq. 10–12.
   std::string materials;
+  /// "auto", "true" or "false" (docs/fit.md, Pillowing).
+  std::string pillow = "auto";
+  /// Whether the case sets the target and eps_sigma; fit picks them otherwise (Choices).
+  bool target_given = false, eps_sigma_given = false;
 };
 
 /// Reads c.options for `meshmorph fit` and the Python module's fit(), with `threads` OpenMP
@@ -40,7 +44,11 @@ struct FitSetup {
   Topology topology;
   std::vector<FitTerm> terms;
   std::vector<std::uint8_t> fixed;  ///< d per node
-  std::size_t split_cells = 0, two_facet_cells = 0;
+  std::size_t split_cells = 0, two_facet_cells = 0, pillowed_cells = 0;
+  /// The settings' fit options with fit's own picks filled in (target, eps_sigma).
+  FitOptions fit;
+  /// What fit picked where the case left it open, and why (docs/fit.md, Choices).
+  nlohmann::ordered_json choices = nlohmann::ordered_json::object();
 };
 
 /// Sets the case up on `mesh` (valid, checked against the case): every level set must cover

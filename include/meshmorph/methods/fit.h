@@ -26,10 +26,13 @@ std::vector<int> interface_facet_counts(const Topology& topology, const std::vec
 /// flips before it): a cell keeps η when at most one of its facets is on the interface,
 /// flips when all but one are. Then (ours, with `reduce_crowding`) a cell still with two or
 /// more interface facets flips when that lowers the count of such cells among it and its
-/// neighbours, until no flip helps. The cells left with two or more are listed in `to_split` (global cell indices).
-/// Returns the corrected indicators.
+/// neighbours, until no flip helps; with `vertex_stars` also every cell around a vertex of
+/// such a cell takes one indicator when that lowers the count among them and their
+/// neighbours (fit uses them on tetrahedra, where no split follows). The cells left with two or more
+/// are listed in `to_split` (global cell indices). Returns the corrected indicators.
 std::vector<std::uint8_t> correct_indicators(const Topology& topology, std::vector<std::uint8_t> eta,
-                                             std::vector<std::int32_t>& to_split, bool reduce_crowding = true);
+                                             std::vector<std::int32_t>& to_split, bool reduce_crowding = true,
+                                             bool vertex_stars = false);
 
 /// Conforming splits of linear triangles and quadrilaterals with two or more interface
 /// facets (paper 003 §3.2): a quadrilateral whose two interface facets meet at a corner is
@@ -69,6 +72,11 @@ struct FlatEdges {
   std::size_t cells = 0;  ///< cells with a flat edge
 };
 FlatEdges flat_edges(const Mesh& mesh, const std::vector<std::uint8_t>& fitted);
+
+/// The mean over the mesh (weighted by volume) of the shape metric μ2 (2D) / μ303 (3D)
+/// against the ideal target: 0 on a mesh of squares or cubes, about 0.15 on right
+/// triangles. Fit takes the input target when it is large (docs/fit.md, Choices).
+double mean_shape_distortion(const Mesh& mesh);
 
 /// Parameters of fitting (paper 003 Algorithm 1); defaults are the paper's.
 struct FitOptions {
