@@ -163,7 +163,11 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh) {
 
 std::size_t orient_cells(const CaseFile& c, Mesh& mesh) {
   if (mesh.n_cells() == 0) return 0;
-  const Topology topology = build_topology(mesh, TopologyParts::Facets);
+  return orient_cells(c, mesh, build_topology(mesh, TopologyParts::Facets));
+}
+
+std::size_t orient_cells(const CaseFile& c, Mesh& mesh, const Topology& topology) {
+  if (mesh.n_cells() == 0) return 0;
   const CellOrientation o = cell_orientation(mesh, topology, signed_volumes(mesh));
   const std::string where = c.mesh.empty() ? c.file.string() + ": the mesh" : c.mesh.string();
   if (o.twisted_cell >= 0)

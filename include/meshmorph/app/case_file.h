@@ -15,6 +15,7 @@
 #include "meshmorph/geometry/level_set.h"
 #include "meshmorph/methods/boundary_motion.h"
 #include "meshmorph/mesh/mesh.h"
+#include "meshmorph/mesh/topology.h"
 
 namespace meshmorph {
 
@@ -72,6 +73,9 @@ void check_case_against_mesh(const CaseFile& c, const Mesh& mesh);
 /// many cells and the first. With it, those cells are listed mirrored back. Returns how many
 /// cells were reoriented.
 std::size_t orient_cells(const CaseFile& c, Mesh& mesh);
+/// The same with the facets of `topology` (built for `mesh` as it is): the caller rebuilds
+/// it when cells were reoriented (their facets' local numbers change).
+std::size_t orient_cells(const CaseFile& c, Mesh& mesh, const Topology& topology);
 
 /// Reads a displacement CSV: lines `node,dx,dy[,dz]` (the same number of columns on every
 /// line), an optional header line, blank lines ignored. Throws InputError `file:line: ...`
