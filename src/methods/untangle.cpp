@@ -85,7 +85,7 @@ class UntangleImpl final : public Untangler::Impl {
       delta0 = delta;
       P.set_delta(delta);
       P.set_gamma(delta > 0.0 ? options_.gamma_untangle : options_.gamma_smooth);
-      P.set_certify(delta == 0.0 && folded == 0);
+      P.set_certify(options_.certify && delta == 0.0 && folded == 0);
     };
     // Valid at every point, smoothed, and still folded by the Bernstein bounds between the
     // points: the folds' pieces are sampled too and the untangling goes on (true).
@@ -100,7 +100,7 @@ class UntangleImpl final : public Untangler::Impl {
       start();
       return true;
     };
-    if (m.inverted == 0) folded = P.sample_folds(false);
+    if (options_.certify && m.inverted == 0) folded = P.sample_folds(false);
     start();
     record(result, step, 0, delta, 0.0, m);
 
@@ -141,11 +141,12 @@ class UntangleImpl final : public Untangler::Impl {
       const NewtonStats s = newton(P, *solver_, no, &memory_);
       result.linear += s.linear_solves;
       if (smoothing) {
-        folded = m.inverted == 0 ? P.sample_folds(false) : 0;
+        folded = options_.certify && m.inverted == 0 ? P.sample_folds(false) : 0;
         if (resample()) continue;
         result.converged = m.inverted == 0 && folded == 0;
-        const std::string valid = sampled > 0 ? format("valid by the Bernstein bounds (%zu cells sampled at folds between their points)", sampled)
-                                              : std::string("valid by the Bernstein bounds");
+        const std::string valid = !options_.certify ? std::string("valid")
+                                  : sampled > 0   ? format("valid by the Bernstein bounds (%zu cells sampled at folds between their points)", sampled)
+                                                  : std::string("valid by the Bernstein bounds");
         if (stop_rule) result.message = valid + "; q_min changed by less than eps_q";
         else if (s.converged) result.message = valid + "; the functional is at its minimum";
         else if (steps >= options_.max_newton) result.message = valid + "; smoothing stopped at max_newton Newton steps";
@@ -157,12 +158,11 @@ class UntangleImpl final : public Untangler::Impl {
         break;
       }
       if (became_valid) {
-        folded = P.sample_folds(false);
+        folded = options_.certify ? P.sample_folds(false) : 0;
         log_progress(format("untangle: step %d: valid after %d Newton steps (q_min %.3f); smoothing", step, steps, m.q_min));
         P.set_delta(0.0);
         P.set_gamma(options_.gamma_smooth);
-        P.set_certify(folded == 0);
-        q_previous = m.q_min;
+        P.set_certify(options_.certify && folded == 0);
         continue;
       }
       if (steps >= options_.max_newton) {

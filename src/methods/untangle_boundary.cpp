@@ -133,6 +133,7 @@ LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const
   }
   const Topology sub_topology = build_topology(sub);
   options.reference = UntangleReference::InputWhereValid;
+  options.certify = true;
   Untangler untangler(sub, sub_topology, bc, options, sub_surfaces);
   Eigen::MatrixXd y = sub.x;
   local.result = untangler.solve(sub.x, y);

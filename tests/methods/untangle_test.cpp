@@ -263,8 +263,8 @@ TEST(Untangle, GivesUpWhenTheBoundaryFoldsOverItself) {
 
 // A cube of P3 tetrahedra whose inner nodes are moved at random (a seeded sweep) until a cell
 // folds between its validity samples, every sample positive: the functional's points see no
-// inverted cell, the Bernstein bounds do. Untangling with the box fixed ends valid by the
-// bounds and says so.
+// inverted cell, the Bernstein bounds do. Untangling with the box fixed and `certify` ends
+// valid by the bounds and says so.
 TEST(Untangle, AP3CellFoldedBetweenItsSamplesEndsValidByTheBernsteinBounds) {
   const Mesh cube = structured_mesh(ElementType::Tetrahedron, 3, 1);
   const Topology topo = build_topology(cube);
@@ -292,6 +292,7 @@ TEST(Untangle, AP3CellFoldedBetweenItsSamplesEndsValidByTheBernsteinBounds) {
   ASSERT_TRUE(found) << "no fold between the samples: the sweep does not test the bounds";
   UntangleOptions o;
   o.reference = UntangleReference::InputWhereValid;
+  o.certify = true;
   Untangler untangler(folded, topo, bc, o);
   Eigen::MatrixXd x = folded.x;
   const UntangleResult r = untangler.solve(folded.x, x);
