@@ -10,6 +10,7 @@ namespace meshmorph {
 UntangleOptions read_untangle_options(const nlohmann::json& options, const std::string& file, int threads,
                                       std::optional<UntangleReference>& reference, UntangleBoundary& boundary) {
   UntangleOptions o;
+  o.certify = true;
   OptionReader r(options, file);
   r.read("n", o.n, -16.0, -1e-3);
   r.read("h_min", o.h_min, 1e-3, 1.0 - 1e-3);

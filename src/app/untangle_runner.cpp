@@ -69,7 +69,9 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
   boundary_why_ = bound > 0 ? std::to_string(bound) + " inverted cells have all their corners on the boundary"
                             : "the interior untangles the mesh";
   local_ = bound > 0 && steps_ == 1 && motion_->targets().nodes_with(NodeRole::Prescribed).empty();
-  start(bound > 0 && !local_);
+  // A patch repair builds its own untangler; the whole mesh's only where the patches fail.
+  if (local_) x_ = input_.x;
+  else start(bound > 0);
 }
 
 UntangleRunner::~UntangleRunner() = default;
@@ -193,6 +195,10 @@ RunOutput UntangleRunner::run_steps(const StepSink& on_step) {
 }
 
 RunOutput UntangleRunner::solve(const Eigen::MatrixXd& target) {
+  if (!untangler_) {  // one solve at a time: the whole mesh, its boundary fixed
+    local_ = false;
+    start(false);
+  }
   RunOutput out;
   const UntangleResult r = untangler_->solve(target, x_, ++solves_);
   IterationCounts counts;

@@ -163,7 +163,7 @@ void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings,
                const std::map<std::string, Eigen::MatrixXd>& point_vectors) {
   run.report.case_file = files.case_file;
   write_result_mesh(run, files.output, point_vectors);
-  if (run.report.converged && files.plot) {
+  if (writes_mesh(run) && files.plot) {
     write_comparison(*files.plot, input, run.moved);
     log_info("wrote " + files.plot->string());
   }

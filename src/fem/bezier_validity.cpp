@@ -15,6 +15,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/fem/shape_table.h"
 #include "meshmorph/fem/tensor_basis.h"
+#include "meshmorph/fem/validity.h"
 
 namespace meshmorph::detail {
 
@@ -246,23 +247,27 @@ double negative_value(const DetExpansion& e, int dim, bool simplex, const Eigen:
   return value <= 0.0 ? value : std::numeric_limits<double>::infinity();
 }
 
+// `piece`, where given, receives the corners of the piece where det A ≤ 0 was found.
 template <int d>
-double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X, double sampled) {
+double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X, double sampled, Eigen::MatrixXd* piece) {
   const DetExpansion& e = expansion(type, order);
   const bool simplex = is_simplex(type);
+  Piece root;
+  root.corners = simplex ? Eigen::MatrixXd(d, d + 1) : Eigen::MatrixXd(d, 2);
+  if (simplex) root.corners << Eigen::MatrixXd::Zero(d, 1), Eigen::MatrixXd::Identity(d, d);
+  else root.corners << -Eigen::VectorXd::Ones(d), Eigen::VectorXd::Ones(d);
   Eigen::VectorXd v;
   lattice_dets<d>(e, simplex, X, v);
-  if (v.minCoeff() <= 0.0) return v.minCoeff();
-  Piece root;
+  if (v.minCoeff() <= 0.0) {
+    if (piece) *piece = root.corners;
+    return v.minCoeff();
+  }
   root.c = coefficients(e, d, simplex, v);
   if (root.c.minCoeff() > 0.0) return sampled;
   // Undecided: halve and look again. 6d halvings make a piece 2^−6 of the cell in each
   // direction, where the coefficients are within 1/4096 of the values (O(h²)); the budget
   // bounds a cell whose det A touches zero without crossing it.
   constexpr int k_max_depth = 6 * d, k_budget = 2048;
-  root.corners = simplex ? Eigen::MatrixXd(d, d + 1) : Eigen::MatrixXd(d, 2);
-  if (simplex) root.corners << Eigen::MatrixXd::Zero(d, 1), Eigen::MatrixXd::Identity(d, d);
-  else root.corners << -Eigen::VectorXd::Ones(d), Eigen::VectorXd::Ones(d);
   std::vector<Piece> stack{root};
   for (int examined = 0; !stack.empty() && examined < k_budget;) {
     const Piece s = stack.back();
@@ -270,7 +275,10 @@ double bezier_min_det_dim(ElementType type, int order, const Eigen::MatrixXd& X,
     if (s.depth >= k_max_depth) continue;  // undecided at the finest level: as sampling said
     for (Piece& h : halves(e, simplex, s)) {
       ++examined;
-      if (const double value = negative_value(e, d, simplex, h.c); value <= 0.0) return value;
+      if (const double value = negative_value(e, d, simplex, h.c); value <= 0.0) {
+        if (piece) *piece = h.corners;
+        return value;
+      }
       if (h.c.minCoeff() <= 0.0) stack.push_back(std::move(h));
     }
   }
@@ -335,7 +343,35 @@ double bezier_min_det(ElementType type, int order, const Eigen::MatrixXd& X, dou
   if (type == ElementType::Pyramid && order == 1) return sampled;  // exact at the base corners: pyramid_min_det
   if (type == ElementType::Pyramid && X.rows() == 3) return pyramid_bounds_min_det(order, X, sampled);
   if (X.rows() != dim || !det_needs_bounds(type, order)) return sampled;
-  return dim == 2 ? bezier_min_det_dim<2>(type, order, X, sampled) : bezier_min_det_dim<3>(type, order, X, sampled);
+  return dim == 2 ? bezier_min_det_dim<2>(type, order, X, sampled, nullptr) : bezier_min_det_dim<3>(type, order, X, sampled, nullptr);
 }
 
 }  // namespace meshmorph::detail
+
+namespace meshmorph {
+
+Eigen::MatrixXd fold_samples(ElementType type, int order, const Eigen::MatrixXd& X) {
+  const int dim = topological_dim(type);
+  if (X.rows() != dim || !detail::det_needs_bounds(type, order)) return Eigen::MatrixXd(dim, 0);
+  Eigen::MatrixXd piece;
+  const double sampled = std::numeric_limits<double>::infinity();
+  const double value = dim == 2 ? detail::bezier_min_det_dim<2>(type, order, X, sampled, &piece)
+                                : detail::bezier_min_det_dim<3>(type, order, X, sampled, &piece);
+  if (!(value <= 0.0)) return Eigen::MatrixXd(dim, 0);
+  // The piece's lattice of the degree of det A (whose values there give its coefficients on
+  // the piece): a simplex piece maps the unit lattice barycentrically, a box piece from its
+  // lower to its upper corner.
+  const Eigen::MatrixXd unit = detail::unit_lattice(type, detail::det_degree(type, order));
+  Eigen::MatrixXd points(dim, unit.cols());
+  for (Eigen::Index i = 0; i < unit.cols(); ++i) {
+    if (is_simplex(type)) {
+      points.col(i) = piece.col(0);
+      for (int k = 0; k < dim; ++k) points.col(i) += unit(k, i) * (piece.col(k + 1) - piece.col(0));
+    } else {
+      points.col(i) = piece.col(0) + (piece.col(1) - piece.col(0)).cwiseProduct(unit.col(i));
+    }
+  }
+  return points;
+}
+
+}  // namespace meshmorph

@@ -32,6 +32,8 @@ constexpr double kLooseDecrement = 1e-2;
 constexpr double kTightDecrement = 1e-10;
 // δ below this fraction of its initial value with cells still inverted: give up.
 constexpr double kSmallestDelta = 1e-14;
+// Rounds of finer sampling where the Bernstein bounds find folds between the points.
+constexpr int kFoldRounds = 8;
 
 template <int d>
 class UntangleImpl final : public Untangler::Impl {
@@ -72,17 +74,36 @@ class UntangleImpl final : public Untangler::Impl {
     P.set_state(placed);
 
     typename UntangleProblem<d>::Measures m = P.measure();
-    double delta = 0.0;
-    if (m.inverted > 0) {  // eq. 24 with h*_min = h(V_min)/δ
-      const double h = options_.h_min, v = std::min(m.v_min, 0.0);
-      delta = h * v / (h * h - 1.0) + options_.eps_delta;
-    }
-    const double delta0 = delta;
-    P.set_delta(delta);
-    P.set_gamma(delta > 0.0 ? options_.gamma_untangle : options_.gamma_smooth);
+    double delta = 0.0, delta0 = 0.0;
+    int rounds = 0, steps = 0;
+    std::size_t folded = 0, sampled = 0;
+    // δ of eq. 24 (h*_min = h(V_min)/δ) where a point finds a cell inverted, else 0; the
+    // smoothing at δ = 0 keeps the mesh valid by the Bernstein bounds once it is.
+    const auto start = [&] {
+      delta = m.inverted > 0 ? options_.h_min * std::min(m.v_min, 0.0) / (options_.h_min * options_.h_min - 1.0) + options_.eps_delta
+                             : 0.0;
+      delta0 = delta;
+      P.set_delta(delta);
+      P.set_gamma(delta > 0.0 ? options_.gamma_untangle : options_.gamma_smooth);
+      P.set_certify(options_.certify && delta == 0.0 && folded == 0);
+    };
+    // Valid at every point, smoothed, and still folded by the Bernstein bounds between the
+    // points: the folds' pieces are sampled too and the untangling goes on (true).
+    const auto resample = [&] {
+      if (folded == 0 || rounds >= kFoldRounds || steps >= options_.max_newton) return false;
+      ++rounds;
+      sampled += P.sample_folds(true);
+      memory_.reusable = false;
+      m = P.measure();
+      log_progress(format("untangle: step %d: the Bernstein bounds find det A <= 0 between the points of %zu cells:"
+                          " sampled there too (%zu inverted at the points)", step, folded, m.inverted));
+      start();
+      return true;
+    };
+    if (options_.certify && m.inverted == 0) folded = P.sample_folds(false);
+    start();
     record(result, step, 0, delta, 0.0, m);
 
-    int steps = 0;
     bool stop_rule = false, became_valid = false;
     double q_previous = m.q_min;
     NewtonOptions no;
@@ -120,18 +141,28 @@ class UntangleImpl final : public Untangler::Impl {
       const NewtonStats s = newton(P, *solver_, no, &memory_);
       result.linear += s.linear_solves;
       if (smoothing) {
-        result.converged = m.inverted == 0;
-        if (stop_rule) result.message = "valid; q_min changed by less than eps_q";
-        else if (s.converged) result.message = "valid; the functional is at its minimum";
-        else if (steps >= options_.max_newton) result.message = "valid; smoothing stopped at max_newton Newton steps";
-        else result.message = "valid; smoothing stopped: " + s.message;
-        if (!result.converged) result.message = "tangled again while smoothing";
+        folded = options_.certify && m.inverted == 0 ? P.sample_folds(false) : 0;
+        if (resample()) continue;
+        result.converged = m.inverted == 0 && folded == 0;
+        const std::string valid = !options_.certify ? std::string("valid")
+                                  : sampled > 0   ? format("valid by the Bernstein bounds (%zu cells sampled at folds between their points)", sampled)
+                                                  : std::string("valid by the Bernstein bounds");
+        if (stop_rule) result.message = valid + "; q_min changed by less than eps_q";
+        else if (s.converged) result.message = valid + "; the functional is at its minimum";
+        else if (steps >= options_.max_newton) result.message = valid + "; smoothing stopped at max_newton Newton steps";
+        else result.message = valid + "; smoothing stopped: " + s.message;
+        if (m.inverted > 0) result.message = "tangled again while smoothing";
+        else if (folded > 0)
+          result.message = format("valid at every point, but the Bernstein bounds find det A <= 0 between the points of %zu"
+                                  " cells (after %d rounds of sampling at folds)", folded, rounds);
         break;
       }
       if (became_valid) {
+        folded = options_.certify ? P.sample_folds(false) : 0;
         log_progress(format("untangle: step %d: valid after %d Newton steps (q_min %.3f); smoothing", step, steps, m.q_min));
         P.set_delta(0.0);
         P.set_gamma(options_.gamma_smooth);
+        P.set_certify(options_.certify && folded == 0);
         continue;
       }
       if (steps >= options_.max_newton) {

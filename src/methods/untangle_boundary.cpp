@@ -52,13 +52,14 @@ LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const
   const std::size_t n_cells = topology.block_offset.back();
   std::vector<std::uint8_t> in(n_cells, 0);
   std::vector<std::int32_t> patch;
-  for (std::size_t b = 0; b < mesh.cells.size(); ++b)
-    for (std::size_t c = 0; c < mesh.cells[b].n_cells(); ++c)
-      if (!cell_valid(mesh, mesh.cells[b], c, x)) {
-        const auto cell = static_cast<std::int32_t>(topology.block_offset[b] + c);
-        in[static_cast<std::size_t>(cell)] = 1;
-        patch.push_back(cell);
-      }
+  for (std::size_t b = 0; b < mesh.cells.size(); ++b) {
+    const auto n = static_cast<std::ptrdiff_t>(mesh.cells[b].n_cells());
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::ptrdiff_t c = 0; c < n; ++c)
+      in[topology.block_offset[b] + static_cast<std::size_t>(c)] = !cell_valid(mesh, mesh.cells[b], static_cast<std::size_t>(c), x);
+  }
+  for (std::size_t cell = 0; cell < n_cells; ++cell)
+    if (in[cell]) patch.push_back(static_cast<std::int32_t>(cell));
   if (patch.empty()) {
     local.result.converged = true;
     local.result.message = "no inverted cell";
@@ -132,6 +133,7 @@ LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const
   }
   const Topology sub_topology = build_topology(sub);
   options.reference = UntangleReference::InputWhereValid;
+  options.certify = true;
   Untangler untangler(sub, sub_topology, bc, options, sub_surfaces);
   Eigen::MatrixXd y = sub.x;
   local.result = untangler.solve(sub.x, y);

@@ -14,6 +14,7 @@
 #include "meshmorph/fem/quadrature.h"
 #include "meshmorph/fem/reference_element.h"
 #include "meshmorph/fem/validity.h"
+#include "meshmorph/mesh/topology.h"
 #include "meshmorph/threads.h"
 
 namespace meshmorph {
@@ -32,7 +33,8 @@ template <int d>
 UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology, const BoundaryTargets& bc,
                                     UntangleReference reference, double n, int threads,
                                     const std::vector<FitTerm>& surfaces)
-    : mesh_(&input), topology_(&topology), bc_(&bc), threads_(threads), n_(n), metric_({0.0, n}) {
+    : input_(&input), mesh_(&input), input_topology_(&topology), topology_(&topology), bc_(&bc), reference_(reference), threads_(threads), n_(n),
+      metric_({0.0, n}) {
   // The regular reference has one size for the whole mesh, the input's mean cell volume, so
   // that δ compares with volumes of the mesh's own scale (the paper's h(V) up to a constant).
   double volume_sum = 0.0;
@@ -46,56 +48,7 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
   }
   if (reference == UntangleReference::Regular && !(volume_sum > 0.0))
     throw InputError("untangle: every cell of the input mesh has zero volume");
-  const double mean_volume = volume_sum / static_cast<double>(std::max<std::size_t>(n_cells_, 1));
-
-  targets_.kind = reference == UntangleReference::Regular ? TargetKind::Ideal : TargetKind::Input;
-  targets_.blocks.resize(input.cells.size());
-  for (std::size_t bi = 0; bi < input.cells.size(); ++bi) {
-    const CellBlock& block = input.cells[bi];
-    // Linear simplices: their one point. Linear quadrilaterals: the corners, whose Jacobians
-    // are the corner triangles' (eq. 5), and det A is smallest at a corner. Hexahedra and
-    // curved cells: the points of the validity test, so that the functional sees every
-    // inversion that test sees.
-    const ShapeTable* table = nullptr;
-    if (block.order == 1 && block.type == ElementType::Quadrilateral) {
-      corner_tables_.push_back(std::make_unique<ShapeTable>(tabulate(block.type, 1, reference_element(block.type, 1).nodes)));
-      table = corner_tables_.back().get();
-    } else if (block.order == 1 && is_simplex(block.type)) {
-      table = &shape_table(block.type, 1, metric_quadrature_degree(block.type, 1));
-    } else {
-      table = &validity_samples(block.type, block.order);
-    }
-    BlockTargets<d>& bt = targets_.blocks[bi];
-    bt.table = table;
-    const int Q = table->n_points();
-    // F_e is the mean over the points (quadrature weights normalized; corners alike).
-    Eigen::VectorXd w = table->weights.size() == Q ? table->weights : Eigen::VectorXd::Ones(Q);
-    w /= w.sum();
-    bt.points.resize(block.n_cells() * static_cast<std::size_t>(Q));
-    const MatT<d> W_ideal_inv = ideal_jacobian<d>(block.type, mean_volume > 0.0 ? mean_volume : 1.0).inverse();
-    for (std::size_t c = 0; c < block.n_cells(); ++c) {
-      const auto X = gather<d>(input.x, block.cell(c), block.n_nodes_per_cell());
-      // InputWhereValid: the cells valid by the Bernstein bounds (a fold between the points
-      // would otherwise keep its input shape as target).
-      const bool regular = reference == UntangleReference::Regular ||
-                           (reference == UntangleReference::InputWhereValid &&
-                            !(min_jacobian_det(block.type, block.order, X) > 0.0));
-      for (int q = 0; q < Q; ++q) {
-        QuadratureTarget<d>& t = bt.points[c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)];
-        t.weight = w[q];
-        if (regular) {
-          t.W_inv = W_ideal_inv;
-          continue;
-        }
-        const MatT<d> A = X * table->grad(q);
-        if (!(A.determinant() > 0.0))
-          throw InputError("untangle: cell " + std::to_string(c) + " of cell block " + std::to_string(bi) +
-                           " of the input mesh is inverted or degenerate, so it cannot be the reference element"
-                           " (\"reference\": \"regular\" untangles such a mesh)");
-        t.W_inv = A.inverse();
-      }
-    }
-  }
+  mean_volume_ = volume_sum / static_cast<double>(std::max<std::size_t>(n_cells_, 1));
 
   // Unknowns: every DOF of the free, slide and surface nodes; SlideConstraints holds the
   // slide nodes on their planes, one level set per distinct plane (normal and offset), and the
@@ -127,16 +80,144 @@ UntangleProblem<d>::UntangleProblem(const Mesh& input, const Topology& topology,
   dofs_ = DofMap::from_mask(d, fixed);
   wide_dofs_ = DofMap::from_mask(d, wide);
   slides_ = SlideConstraints<d>(slides, dofs_);
-  assembler_ = std::make_unique<EnergyAssembler<d>>(input, topology, targets_, dofs_);
   component_.resize(dofs_.n_free());
   for (std::size_t j = 0; j < dofs_.n_free(); ++j) component_[j] = dofs_.free_dofs()[j] % d;
-  for (const CellBlock& block : input.cells)
+  x_ = input.x;
+  build();
+}
+
+template <int d>
+void UntangleProblem<d>::build() {
+  corner_tables_.clear();
+  targets_.kind = reference_ == UntangleReference::Regular ? TargetKind::Ideal : TargetKind::Input;
+  targets_.blocks.assign(mesh_->cells.size(), {});
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi) {
+    const CellBlock& block = mesh_->cells[bi];
+    // Linear simplices: their one point. Linear quadrilaterals: the corners, whose Jacobians
+    // are the corner triangles' (eq. 5), and det A is smallest at a corner. Hexahedra and
+    // curved cells: the points of the validity test, so that the functional sees every
+    // inversion that test sees.
+    const ShapeTable* table = nullptr;
+    if (bi < fold_tables_.size() && fold_tables_[bi]) {
+      table = fold_tables_[bi].get();
+    } else if (block.order == 1 && block.type == ElementType::Quadrilateral) {
+      corner_tables_.push_back(std::make_unique<ShapeTable>(tabulate(block.type, 1, reference_element(block.type, 1).nodes)));
+      table = corner_tables_.back().get();
+    } else if (block.order == 1 && is_simplex(block.type)) {
+      table = &shape_table(block.type, 1, metric_quadrature_degree(block.type, 1));
+    } else {
+      table = &validity_samples(block.type, block.order);
+    }
+    BlockTargets<d>& bt = targets_.blocks[bi];
+    bt.table = table;
+    const int Q = table->n_points();
+    // F_e is the mean over the points (quadrature weights normalized; corners alike).
+    Eigen::VectorXd w = table->weights.size() == Q ? table->weights : Eigen::VectorXd::Ones(Q);
+    w /= w.sum();
+    bt.points.resize(block.n_cells() * static_cast<std::size_t>(Q));
+    const MatT<d> W_ideal_inv = ideal_jacobian<d>(block.type, mean_volume_ > 0.0 ? mean_volume_ : 1.0).inverse();
+    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+      const auto X = gather<d>(mesh_->x, block.cell(c), block.n_nodes_per_cell());
+      // InputWhereValid: the cells valid by the Bernstein bounds (a fold between the points
+      // would otherwise keep its input shape as target).
+      const bool regular = reference_ == UntangleReference::Regular ||
+                           (reference_ == UntangleReference::InputWhereValid &&
+                            !(min_jacobian_det(block.type, block.order, X) > 0.0));
+      for (int q = 0; q < Q; ++q) {
+        QuadratureTarget<d>& t = bt.points[c * static_cast<std::size_t>(Q) + static_cast<std::size_t>(q)];
+        t.weight = w[q];
+        if (regular) {
+          t.W_inv = W_ideal_inv;
+          continue;
+        }
+        const MatT<d> A = X * table->grad(q);
+        if (!(A.determinant() > 0.0))
+          throw InputError("untangle: cell " + std::to_string(c) + " of cell block " + std::to_string(bi) +
+                           " of the input mesh is inverted or degenerate, so it cannot be the reference element"
+                           " (\"reference\": \"regular\" untangles such a mesh)");
+        t.W_inv = A.inverse();
+      }
+    }
+  }
+
+  assembler_ = std::make_unique<EnergyAssembler<d>>(*mesh_, *topology_, targets_, dofs_);
+  wide_assembler_.reset();
+  all_fixed_.clear();
+  for (const CellBlock& block : mesh_->cells)
     for (std::size_t c = 0; c < block.n_cells(); ++c) {
       bool none = true;
       for (int a = 0; a < block.n_nodes_per_cell(); ++a) none = none && dofs_.first(block.cell(c)[a]) == dofs_.first(block.cell(c)[a] + 1);
       all_fixed_.push_back(none);
     }
-  x_ = input.x;
+}
+
+template <int d>
+std::size_t UntangleProblem<d>::sample_folds(bool add) {
+  // The cells valid at every point whose Bernstein bounds still find det A ≤ 0 (in parallel:
+  // the bounds cost a few lattices a cell), then the lattices of their folds, in cell order.
+  std::vector<std::pair<std::size_t, std::size_t>> cells;  // (block, cell) of the layout
+  for (std::size_t bi = 0; bi < mesh_->cells.size(); ++bi)
+    for (std::size_t c = 0; c < mesh_->cells[bi].n_cells(); ++c) cells.emplace_back(bi, c);
+  std::vector<std::uint8_t> folded(cells.size(), 0);
+  const auto n_cells = static_cast<std::ptrdiff_t>(cells.size());
+#pragma omp parallel for num_threads(resolve_threads(threads_)) schedule(dynamic, 64)
+  for (std::ptrdiff_t k = 0; k < n_cells; ++k) {
+    const CellBlock& block = mesh_->cells[cells[static_cast<std::size_t>(k)].first];
+    const std::size_t c = cells[static_cast<std::size_t>(k)].second;
+    folded[static_cast<std::size_t>(k)] =
+        !(min_jacobian_det(block.type, block.order, gather<d>(x_, block.cell(c), block.n_nodes_per_cell())) > 0.0);
+  }
+  if (!add) return static_cast<std::size_t>(std::count(folded.begin(), folded.end(), 1));
+  std::size_t found = 0;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (!folded[k]) continue;
+    const auto [bi, c] = cells[k];
+    const CellBlock& block = mesh_->cells[bi];
+    const Eigen::MatrixXd points = fold_samples(block.type, block.order, gather<d>(x_, block.cell(c), block.n_nodes_per_cell()));
+    if (points.cols() == 0) continue;
+    const std::int32_t cell = cell_of_.empty() ? static_cast<std::int32_t>(k) : cell_of_[k];
+    Eigen::MatrixXd& extra = fold_points_[cell];
+    extra.conservativeResize(d, extra.cols() + points.cols());
+    extra.rightCols(points.cols()) = points;
+    ++found;
+  }
+  if (found == 0) return 0;
+  // The layout: the input's blocks without the cells sampled at their folds, then each of
+  // those as a block of its own, its table the validity samples and the folds' points.
+  layout_ = *input_;
+  std::vector<std::uint8_t> apart(n_cells_, 0);
+  for (const auto& [cell, points] : fold_points_) apart[static_cast<std::size_t>(cell)] = 1;
+  cell_of_.clear();
+  fold_tables_.clear();
+  std::size_t cell = 0;
+  for (CellBlock& block : layout_.cells) {
+    CellBlock kept{block.type, block.order, {}, {}, {}};
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++cell)
+      if (!apart[cell]) {
+        kept.push_back(block.cell(c), 0);
+        cell_of_.push_back(static_cast<std::int32_t>(cell));
+      }
+    block = std::move(kept);
+  }
+  std::erase_if(layout_.cells, [](const CellBlock& block) { return block.nodes.empty(); });
+  fold_tables_.resize(layout_.cells.size());
+  for (const auto& [global, points] : fold_points_) {
+    const auto [b, c] = input_topology_->locate(global);
+    const CellBlock& source = input_->cells[b];
+    CellBlock own{source.type, source.order, {}, {}, {}};
+    own.push_back(source.cell(c), 0);
+    layout_.cells.push_back(std::move(own));
+    const ShapeTable& samples = validity_samples(source.type, source.order);
+    Eigen::MatrixXd all(d, samples.n_points() + points.cols());
+    all << samples.points, points;
+    fold_tables_.push_back(std::make_unique<ShapeTable>(tabulate(source.type, source.order, all)));
+    cell_of_.push_back(global);
+  }
+  layout_topology_ = build_topology(layout_);
+  mesh_ = &layout_;
+  topology_ = &layout_topology_;
+  build();
+  return found;
 }
 
 template <int d>
@@ -174,7 +255,23 @@ double UntangleProblem<d>::trial_value(const Eigen::VectorXd& p, double alpha) {
   trial_ = x_;
   dofs_.add_step(p, alpha, trial_);
   if (!slides_.empty() && !slides_.project(trial_, threads_)) return std::numeric_limits<double>::infinity();
-  return assembler_->value(metric_, trial_, {}, threads_);
+  const double value = assembler_->value(metric_, trial_, {}, threads_);
+  return !std::isfinite(value) || !certify_ || bounds_valid(trial_) ? value : std::numeric_limits<double>::infinity();
+}
+
+template <int d>
+bool UntangleProblem<d>::bounds_valid(const Eigen::MatrixXd& x) const {
+  bool valid = true;
+  for (const CellBlock& block : mesh_->cells) {
+    // det A of a linear simplex is its one point's; of a linear quadrilateral, least at a corner.
+    if (block.order == 1 && (is_simplex(block.type) || block.type == ElementType::Quadrilateral)) continue;
+    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
+#pragma omp parallel for num_threads(resolve_threads(threads_)) reduction(&& : valid) schedule(dynamic, 64)
+    for (std::ptrdiff_t c = 0; c < n_cells; ++c)
+      valid = valid && min_jacobian_det(block.type, block.order,
+                                        gather<d>(x, block.cell(static_cast<std::size_t>(c)), block.n_nodes_per_cell())) > 0.0;
+  }
+  return valid;
 }
 
 template <int d>

@@ -4,7 +4,8 @@
 (examples/meshes, which the examples' cases and scripts read) writes a 480 × 480 PNG that PIL
 opens, with many colours and most of it drawn on; an SVG parses as XML; --reference gives the
 quality and displacement fields; a morph with --plot writes input and output side by side
-(960 × 480), and a morph that misses its goal writes no picture. Bad input exits 2 naming the
+(960 × 480), an optimize out of Newton steps with a valid, improved mesh draws it too, and a
+morph that misses its goal writes no picture. Bad input exits 2 naming the
 file or option, before anything is written."""
 import json
 import pathlib
@@ -81,6 +82,11 @@ missed = dict(case, boundary=[{"group": "inner", "rotate": {"center": [0, 0], "d
 run("morph", "missed.json", "--plot", "missed.png", expect=1, cwd=work)
 assert not (work / "missed.png").exists() and not (work / "missed.vtu").exists()
 print("ok no picture where the goal is missed")
+
+run("optimize", annulus, "--max-newton", "1", "-o", work / "improved.vtu", "--plot", work / "improved.png", expect=1)
+assert (work / "improved.vtu").exists()
+check_png(work / "improved.png", 960, 480)
+print("ok a picture of the improved mesh where the run stops short")
 
 fails(["plot", work / "nothing.msh", "-o", work / "x.png"], ["nothing.msh"], work / "x.png")
 fails(["plot", data / "bad" / "msh41_truncated.msh", "-o", work / "x.png"], ["msh41_truncated.msh"], work / "x.png")

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "meshmorph/fem/validity.h"
 
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -138,6 +142,33 @@ TEST(Validity, NanCoordinatesAreInvalid) {
   auto mesh = structured_mesh(ElementType::Tetrahedron, 1, 1);
   mesh.x(0, 0) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_GE(count_invalid_cells(mesh), 1u);
+}
+
+// A P3 tetrahedron folded between its validity samples (a random one of a seeded sweep):
+// fold_samples gives points of the reference cell, det A ≤ 0 at one of them at least, which the
+// samples miss; on a valid cell it gives none.
+TEST(Validity, FoldSamplesSeeTheFoldBetweenTheSamples) {
+  const auto mesh = structured_mesh(ElementType::Tetrahedron, 3, 1);
+  const auto& b = mesh.cells[0];
+  const std::vector<std::uint8_t> keep(static_cast<std::size_t>(validity_samples(b.type, b.order).n_points()), 0);
+  EXPECT_EQ(fold_samples(b.type, b.order, cell_coordinates(mesh, b, 0)).cols(), 0);
+  std::srand(11);
+  int folds = 0;
+  for (int trial = 0; trial < 1000 && folds < 3; ++trial) {
+    const double amplitude = 0.05 + 0.25 * (trial % 10) / 10.0;
+    const Eigen::MatrixXd X = cell_coordinates(mesh, b, 0) + amplitude * Eigen::MatrixXd::Random(3, b.n_nodes_per_cell());
+    if (!(min_jacobian_det(b.type, b.order, X, keep) > 0.0) || min_jacobian_det(b.type, b.order, X) > 0.0) continue;
+    ++folds;
+    const Eigen::MatrixXd points = fold_samples(b.type, b.order, X);
+    ASSERT_GT(points.cols(), 0) << "trial " << trial;
+    const ShapeTable t = tabulate(b.type, b.order, points);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int q = 0; q < t.n_points(); ++q) lowest = std::min(lowest, jacobian(X, t, q).determinant());
+    EXPECT_LE(lowest, 0.0) << "trial " << trial;
+    EXPECT_LE(points.colwise().sum().maxCoeff(), 1.0 + 1e-12);  // inside the reference cell
+    EXPECT_GE(points.minCoeff(), -1e-12);
+  }
+  EXPECT_GT(folds, 0) << "no fold between the samples: the sweep does not test fold_samples";
 }
 
 }  // namespace

@@ -261,6 +261,49 @@ TEST(Untangle, GivesUpWhenTheBoundaryFoldsOverItself) {
   EXPECT_EQ(s.newton, 0);
 }
 
+// A cube of P3 tetrahedra whose inner nodes are moved at random (a seeded sweep) until a cell
+// folds between its validity samples, every sample positive: the functional's points see no
+// inverted cell, the Bernstein bounds do. Untangling with the box fixed and `certify` ends
+// valid by the bounds and says so.
+TEST(Untangle, AP3CellFoldedBetweenItsSamplesEndsValidByTheBernsteinBounds) {
+  const Mesh cube = structured_mesh(ElementType::Tetrahedron, 3, 1);
+  const Topology topo = build_topology(cube);
+  const BoundaryTargets bc = fixed_boundary(cube, topo);
+  const std::vector<std::uint8_t> keep(static_cast<std::size_t>(validity_samples(ElementType::Tetrahedron, 3).n_points()), 0);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Mesh folded = cube;
+  bool found = false;
+  for (int trial = 0; trial < 2000 && !found; ++trial) {
+    folded.x = cube.x;
+    for (std::size_t i = 0; i < cube.n_nodes(); ++i)
+      if (bc.role[i] == NodeRole::Free)
+        for (int k = 0; k < 3; ++k) folded.x(k, static_cast<Eigen::Index>(i)) += 0.12 * unit(random);
+    const CellBlock& b = folded.cells[0];
+    bool samples_valid = true;
+    std::size_t bernstein_invalid = 0;
+    for (std::size_t c = 0; c < b.n_cells(); ++c) {
+      const Eigen::MatrixXd X = cell_coordinates(folded, b, c);
+      samples_valid = samples_valid && min_jacobian_det(b.type, b.order, X, keep) > 0.0;
+      bernstein_invalid += min_jacobian_det(b.type, b.order, X) > 0.0 ? 0 : 1;
+    }
+    found = samples_valid && bernstein_invalid > 0;
+  }
+  ASSERT_TRUE(found) << "no fold between the samples: the sweep does not test the bounds";
+  UntangleOptions o;
+  o.reference = UntangleReference::InputWhereValid;
+  o.certify = true;
+  Untangler untangler(folded, topo, bc, o);
+  Eigen::MatrixXd x = folded.x;
+  const UntangleResult r = untangler.solve(folded.x, x);
+  EXPECT_EQ(r.initial_inverted, 0u);  // at the functional's points
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_NE(r.message.find("valid by the Bernstein bounds"), std::string::npos) << r.message;
+  Mesh out = folded;
+  out.x = x;
+  EXPECT_EQ(count_invalid_cells(out), 0u);
+}
+
 TEST(Untangle, AnInputReferenceNeedsAValidInput) {
   Mesh mesh = structured_mesh(ElementType::Triangle, 1, 3);
   mesh.x.col(5) << 2.0, 2.0;  // an interior node thrown out of its cells

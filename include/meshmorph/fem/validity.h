@@ -27,6 +27,14 @@ double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X);
 /// sample, without the Bernstein expansion (the skipped samples are meant to be ≤ 0).
 double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, const std::vector<std::uint8_t>& skip);
 
+/// Where the Bernstein bounds of det A find it ≤ 0 in one curved cell or hexahedron (X: dim ×
+/// n nodes; simplices and tensor cells): the lattice, of the degree of det A, of the piece of
+/// the reference cell where the bisection of min_jacobian_det found it (dim × N reference
+/// points, the whole cell's lattice where a lattice value of the cell is ≤ 0). Sampling there
+/// sees the fold that the validity samples miss. Empty (dim × 0) where the bounds find none,
+/// and on prisms, pyramids and cells that need no bounds.
+Eigen::MatrixXd fold_samples(ElementType type, int order, const Eigen::MatrixXd& X);
+
 /// Number of cells of `mesh` whose min_jacobian_det is ≤ 0 (or not finite).
 std::size_t count_invalid_cells(const Mesh& mesh);
 

@@ -50,6 +50,12 @@ struct UntangleOptions {
   DeltaRule delta_rule = DeltaRule::Continuation;
   bool predictor = true;       ///< differential predictor between steps (eq. 22–23)
   int max_newton = 300;        ///< Newton steps per step of a time series
+  /// End valid by the Bernstein bounds of det A, not only at the functional's points
+  /// (docs/untangle.md, What is guaranteed for curved cells): smoothing keeps the bounds'
+  /// validity, and folds between the points are sampled and untangled (8 rounds at most).
+  /// Off: the points alone decide, and the caller checks the bounds. The untangle command and
+  /// untangle_locally set it.
+  bool certify = false;
   LinearSolverKind solver = LinearSolverKind::Auto;
   int threads = 0;
 };

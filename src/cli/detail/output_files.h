@@ -78,7 +78,7 @@ RunFiles run_files(const std::string& output, const std::string& report, const s
                    const std::string& input, const std::string& suffix = "");
 
 /// Writes a run's mesh (write_result_mesh), its picture beside `input` (write_comparison)
-/// where the goal was reached, and its report (write_report, with `case`, `seconds` and
+/// where that mesh is written (writes_mesh), and its report (write_report, with `case`, `seconds` and
 /// `timings` filled, the writing of the others included) where `files` ask for them.
 void write_run(RunOutput& run, const RunFiles& files, const RunTimings& timings, const Mesh& input,
                const std::map<std::string, Eigen::MatrixXd>& point_vectors = {});

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -7,6 +8,7 @@
 
 #include "meshmorph/energy/assembler.h"
 #include "meshmorph/energy/slide_constraints.h"
+#include "meshmorph/mesh/topology.h"
 #include "meshmorph/methods/boundary_targets.h"
 #include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/edge_quality.h"
@@ -50,6 +52,9 @@ class UntangleProblem final : public NewtonProblem {
   double delta() const { return metric_.options().delta; }
   void set_delta(double delta) { metric_ = EdgeQuality<d>({delta, n_}); }
   void set_gamma(double gamma) { gamma_ = gamma; }
+  /// With `certify`, a trial point where the Bernstein bounds find a cell folded
+  /// (min_jacobian_det ≤ 0) has F = +∞: steps from a mesh valid by the bounds keep it so.
+  void set_certify(bool certify) { certify_ = certify; }
   /// The accepted step of the last accept() (α p, reduced numbering).
   const Eigen::VectorXd& last_step() const { return last_step_; }
 
@@ -64,6 +69,13 @@ class UntangleProblem final : public NewtonProblem {
   /// Cells whose every node is fixed or prescribed and that are inverted: no motion of the
   /// free nodes can repair them.
   std::size_t stuck_inverted() const;
+  /// Samples det A more finely where the points miss a fold: each cell that every point
+  /// finds valid and whose Bernstein bounds find det A ≤ 0 between them gets the lattice of
+  /// the piece where they found it (fold_samples) as points of its own, in F and in
+  /// measure(), from now on (the input's Jacobian or the regular one as reference there, as
+  /// at its other points). Returns the number of such cells: 0 means every cell valid at its
+  /// points is valid by the bounds.
+  std::size_t sample_folds(bool add = true);
   /// Δδ of eq. 13 at the current iterate for the step `dx` (reduced numbering; empty = 0):
   /// −(∂F/∂δ + ∂²F/∂δ∂x·dx) / ∂²F/∂δ².
   double delta_increment(const Eigen::VectorXd& dx) const;
@@ -75,13 +87,27 @@ class UntangleProblem final : public NewtonProblem {
 
  private:
   void scale_off_diagonal(Assembly& out) const;
+  /// The targets, the assembler and all_fixed_ of the cells of mesh_.
+  void build();
+  /// Whether min_jacobian_det is > 0 on every cell at `x`.
+  bool bounds_valid(const Eigen::MatrixXd& x) const;
 
-  const Mesh* mesh_;
-  const Topology* topology_;
+  const Mesh* input_;
+  const Mesh* mesh_;                // the input, or layout_ once cells are sampled at folds
+  const Topology* input_topology_;
+  const Topology* topology_;        // of mesh_
   const BoundaryTargets* bc_;
+  UntangleReference reference_;
   int threads_;
   double n_;
+  double mean_volume_ = 0.0;
+  Mesh layout_;                     // the input's cells, those sampled at folds in blocks of their own
+  Topology layout_topology_;
+  std::vector<std::int32_t> cell_of_;  // layout cell → input cell (empty: the input's order)
+  std::map<std::int32_t, Eigen::MatrixXd> fold_points_;  // input cell → its fold points (reference)
+  std::vector<std::unique_ptr<ShapeTable>> fold_tables_;  // per layout block: its own table, or null
   double gamma_ = 1.0;
+  bool certify_ = false;
   std::size_t n_cells_ = 0;
   std::vector<std::unique_ptr<ShapeTable>> corner_tables_;  // owned tables of the corner points
   TargetField<d> targets_;
