@@ -131,12 +131,7 @@ void multiply_values_blocks(const RowsView& A, const Csr& B, Csr& C, int threads
         for (int m = 0; m < N; ++m) brow[m] = B.val.data() + B.ptr[J * N + m];
         for (int kb = 0; kb < bw; kb += N) {
           const int off = slot[B.idx[b0 + kb] / N];
-          for (int r = 0; r < N; ++r)
-            for (int c = 0; c < N; ++c) {
-              double s = 0.0;
-              for (int m = 0; m < N; ++m) s += a[r][m] * brow[m][kb + c];
-              crow[r][off + c] += s;
-            }
+          add_block_product<N>(a, brow, kb, crow, off);
         }
       }
     }
@@ -169,22 +164,7 @@ Csr multiply_blocks(const RowsView& A, const Csr& B, int threads) {
       std::sort(row.begin(), row.end());
     }
   }
-  C.ptr.assign(static_cast<std::size_t>(C.rows) + 1, 0);
-  for (int I = 0; I < n_nodes; ++I)
-    for (int r = 0; r < N; ++r)
-      C.ptr[I * N + r + 1] = C.ptr[I * N + r] + N * static_cast<int>(blocks[static_cast<std::size_t>(I)].size());
-  C.idx.resize(static_cast<std::size_t>(C.ptr.back()));
-  C.val.resize(static_cast<std::size_t>(C.ptr.back()));
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int I = 0; I < n_nodes; ++I) {
-    std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
-    for (int r = 0; r < N; ++r) {
-      int k = C.ptr[I * N + r];
-      for (const int K : row)
-        for (int c = 0; c < N; ++c) C.idx[static_cast<std::size_t>(k++)] = K * N + c;
-    }
-    std::vector<int>().swap(row);
-  }
+  expand_node_pattern(N, blocks, C, threads);
   multiply_values_blocks<N>(A, B, C, threads);
   return C;
 }
@@ -222,6 +202,26 @@ bool block_rows_of(const RowsView& A, int b) {
 }
 
 }  // namespace
+
+void expand_node_pattern(int n, std::vector<std::vector<int>>& blocks, Csr& C, int threads) {
+  const auto n_nodes = static_cast<int>(blocks.size());
+  C.ptr.assign(static_cast<std::size_t>(C.rows) + 1, 0);
+  for (int I = 0; I < n_nodes; ++I)
+    for (int r = 0; r < n; ++r)
+      C.ptr[I * n + r + 1] = C.ptr[I * n + r] + n * static_cast<int>(blocks[static_cast<std::size_t>(I)].size());
+  C.idx.resize(static_cast<std::size_t>(C.ptr.back()));
+  C.val.assign(static_cast<std::size_t>(C.ptr.back()), 0.0);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int I = 0; I < n_nodes; ++I) {
+    std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
+    for (int r = 0; r < n; ++r) {
+      int k = C.ptr[I * n + r];
+      for (const int K : row)
+        for (int c = 0; c < n; ++c) C.idx[static_cast<std::size_t>(k++)] = K * n + c;
+    }
+    std::vector<int>().swap(row);
+  }
+}
 
 void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads) {
   multiply_values_of(rows_of(A), B, C, block, threads);

@@ -40,22 +40,7 @@ Csr galerkin_pattern(const SparseView& A, const Csr& P, const Csr& R, int n, int
       std::sort(row.begin(), row.end());
     }
   }
-  C.ptr.assign(static_cast<std::size_t>(C.rows) + 1, 0);
-  for (int I = 0; I < n_nodes; ++I)
-    for (int r = 0; r < n; ++r)
-      C.ptr[I * n + r + 1] = C.ptr[I * n + r] + n * static_cast<int>(blocks[static_cast<std::size_t>(I)].size());
-  C.idx.resize(static_cast<std::size_t>(C.ptr.back()));
-  C.val.resize(static_cast<std::size_t>(C.ptr.back()));
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int I = 0; I < n_nodes; ++I) {
-    std::vector<int>& row = blocks[static_cast<std::size_t>(I)];
-    for (int r = 0; r < n; ++r) {
-      int k = C.ptr[I * n + r];
-      for (const int K : row)
-        for (int c = 0; c < n; ++c) C.idx[static_cast<std::size_t>(k++)] = K * n + c;
-    }
-    std::vector<int>().swap(row);
-  }
+  expand_node_pattern(n, blocks, C, threads);
   return C;
 }
 
@@ -113,12 +98,7 @@ Csr slice_product(const SparseView& A, const Csr& P, int first, int rows, int th
             used += N;
           }
           const int off = slot[K];
-          for (int r = 0; r < N; ++r)
-            for (int c = 0; c < N; ++c) {
-              double sum = 0.0;
-              for (int m = 0; m < N; ++m) sum += a[r][m] * brow[m][kb + c];
-              srow[r][off + c] += sum;
-            }
+          add_block_product<N>(a, brow, kb, srow, off);
         }
       }
       for (int k = 0; k < used; k += N) slot[S.idx[static_cast<std::size_t>(s0 + k)] / N] = -1;
@@ -157,12 +137,7 @@ void add_slice(const Csr& R, const Csr& AP, int first, Csr& C, int threads) {
         for (int m = 0; m < N; ++m) brow[m] = AP.val.data() + AP.ptr[J * N + m];
         for (int kb = 0; kb < bw; kb += N) {
           const int off = slot[AP.idx[b0 + kb] / N];
-          for (int r = 0; r < N; ++r)
-            for (int c = 0; c < N; ++c) {
-              double s = 0.0;
-              for (int m = 0; m < N; ++m) s += a[r][m] * brow[m][kb + c];
-              crow[r][off + c] += s;
-            }
+          add_block_product<N>(a, brow, kb, crow, off);
         }
       }
     }

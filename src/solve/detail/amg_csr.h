@@ -50,6 +50,22 @@ Csr multiply(const Csr& A, const Csr& B, int block, int threads);
 void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads);
 void multiply_values(const Csr& A, const Csr& B, Csr& C, int block, int threads);
 
+/// c_r[off + j] += Σ_m a[r][m] b_m[j] for the N×N block of b's rows at `kb`: the block step
+/// of the products, whose order of sums multiply() and galerkin() share (the same bits).
+template <int N>
+inline void add_block_product(const double (&a)[N][N], const double* const (&b)[N], int kb, double* const (&c)[N],
+                              int off) {
+  for (int r = 0; r < N; ++r)
+    for (int j = 0; j < N; ++j) {
+      double s = 0.0;
+      for (int m = 0; m < N; ++m) s += a[r][m] * b[m][kb + j];
+      c[r][off + j] += s;
+    }
+}
+
+/// C's pattern from one given node by node: C.rows rows in nodes of `n`, blocks[I] the sorted
+/// column nodes of node row I, each an n×n block; values zero. Empties `blocks`.
+void expand_node_pattern(int n, std::vector<std::vector<int>>& blocks, Csr& C, int threads);
 /// The coarse operator C = R A P of a multigrid level (R = Pᵀ) with A P formed for a sixteenth
 /// of A's rows at a time and added to C, so that it is never held whole (on the §5.2 shells
 /// A P holds 1.1 entries per entry of A). `row_block`: the block rows of A and P; `block`:
