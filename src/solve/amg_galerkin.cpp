@@ -47,15 +47,15 @@ Csr galerkin_pattern(const SparseView& A, const Csr& P, const Csr& R, int n, int
 // Rows `first` .. `first + rows` of A P, nodes of N rows (A and P with block rows of N): the
 // values multiply() gives them, each row's blocks in the order they are met (unsorted: the
 // sort and the per-row lists of multiply()'s pattern took as long as the products).
+// `count` (one per node row): the blocks of each row, counted here unless `known`.
 template <int N>
-Csr slice_product(const SparseView& A, const Csr& P, int first, int rows, int threads) {
+Csr slice_product(const SparseView& A, const Csr& P, int first, int rows, int* count, bool known, int threads) {
   Csr S;
   S.rows = rows;
   S.cols = P.cols;
   const int n_nodes = rows / N, f = first / N;
-  std::vector<int> count(static_cast<std::size_t>(n_nodes) + 1, 0);
-#pragma omp parallel num_threads(threads)
-  {
+#pragma omp parallel num_threads(threads) if (!known)
+  if (!known) {
     std::vector<int> marker(static_cast<std::size_t>(P.cols / N), -1);
 #pragma omp for schedule(dynamic, 64)
     for (int I = 0; I < n_nodes; ++I) {
@@ -64,12 +64,12 @@ Csr slice_product(const SparseView& A, const Csr& P, int first, int rows, int th
       for (int ka = A.outer[i]; ka < A.outer[i + 1]; ka += N)
         for (int kb = P.ptr[A.inner[ka]]; kb < P.ptr[A.inner[ka] + 1]; kb += N)
           if (marker[P.idx[kb] / N] != I) marker[P.idx[kb] / N] = I, ++c;
-      count[static_cast<std::size_t>(I) + 1] = c;
+      count[I] = c;
     }
   }
   S.ptr.assign(static_cast<std::size_t>(rows) + 1, 0);
   for (int I = 0; I < n_nodes; ++I)
-    for (int r = 0; r < N; ++r) S.ptr[I * N + r + 1] = S.ptr[I * N + r] + N * count[static_cast<std::size_t>(I) + 1];
+    for (int r = 0; r < N; ++r) S.ptr[I * N + r + 1] = S.ptr[I * N + r] + N * count[I];
   S.idx.resize(static_cast<std::size_t>(S.ptr.back()));
   S.val.assign(static_cast<std::size_t>(S.ptr.back()), 0.0);
 #pragma omp parallel num_threads(threads)
@@ -146,21 +146,26 @@ void add_slice(const Csr& R, const Csr& AP, int first, Csr& C, int threads) {
 
 }  // namespace
 
-bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C, bool values_only,
-              int threads) {
-  if (!values_only) C = galerkin_pattern(A, P, R, block, threads);
-  if (C.rows != R.rows || C.cols != P.cols) return false;
-  std::fill(C.val.begin(), C.val.end(), 0.0);
+bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C,
+              std::vector<int>& ap_blocks, bool values_only, int threads) {
   // A P node by node where P has A's block rows too (as multiply() forms it).
   const int by_blocks = row_block > 1 && has_block_rows(P, row_block) ? row_block : 1;
+  const auto n_rows = static_cast<std::size_t>(A.n / by_blocks);
+  if (!values_only) {
+    C = galerkin_pattern(A, P, R, block, threads);
+    ap_blocks.assign(n_rows, 0);
+  }
+  if (C.rows != R.rows || C.cols != P.cols || ap_blocks.size() != n_rows) return false;
+  std::fill(C.val.begin(), C.val.end(), 0.0);
   // Slices of whole nodes of A's rows and of R's columns.
   const int node = std::max(row_block, block);
   const int step = std::max(1, (A.n / node + kSlices - 1) / kSlices) * node;
   for (int first = 0; first < A.n; first += step) {
     const int rows = std::min(step, A.n - first);
-    const Csr AP = by_blocks == 3   ? slice_product<3>(A, P, first, rows, threads)
-                   : by_blocks == 2 ? slice_product<2>(A, P, first, rows, threads)
-                                    : slice_product<1>(A, P, first, rows, threads);
+    int* count = ap_blocks.data() + first / by_blocks;
+    const Csr AP = by_blocks == 3   ? slice_product<3>(A, P, first, rows, count, values_only, threads)
+                   : by_blocks == 2 ? slice_product<2>(A, P, first, rows, count, values_only, threads)
+                                    : slice_product<1>(A, P, first, rows, count, values_only, threads);
     if (block == 3)
       add_slice<3>(R, AP, first, C, threads);
     else if (block == 2)

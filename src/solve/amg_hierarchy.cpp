@@ -81,7 +81,7 @@ void AmgHierarchy::build_given_level(std::vector<double>& weights) {
   L.R = transpose(L.P, threads);
   Level next;
   L.product_block = product_block(L);
-  galerkin(L.A, L.P, L.R, L.row_block, L.product_block, next.own, false, threads);
+  galerkin(L.A, L.P, L.R, L.row_block, L.product_block, next.own, L.ap_blocks, false, threads);
   const int b = options_.block_size > 0 && first_.cols % options_.block_size == 0 ? options_.block_size : 1;
   next.block = b;
   levels_.push_back(std::move(next));
@@ -101,7 +101,8 @@ bool AmgHierarchy::refresh(const SparseView& A) {
   const int threads = std::max(1, options_.threads);
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     Level& L = levels_[l];
-    if (!galerkin(L.A, L.P, L.R, L.row_block, L.product_block, levels_[l + 1].own, true, threads)) return false;
+    if (!galerkin(L.A, L.P, L.R, L.row_block, L.product_block, levels_[l + 1].own, L.ap_blocks, true, threads))
+      return false;
     if (!prepare_level(levels_[l + 1])) return false;
   }
   return coarse_.factorize(levels_.back().A);
@@ -179,7 +180,7 @@ bool AmgHierarchy::build_level(std::size_t l, std::vector<double>& weights) {
   L.R = transpose(L.P, threads);
   L.product_block = product_block(L);
   Level next;
-  galerkin(A, L.P, L.R, L.row_block, L.product_block, next.own, false, threads);
+  galerkin(A, L.P, L.R, L.row_block, L.product_block, next.own, L.ap_blocks, false, threads);
   next.block = b;
   levels_.push_back(std::move(next));
   levels_.back().A = levels_.back().own.view();

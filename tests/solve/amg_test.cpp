@@ -228,16 +228,19 @@ TEST(AmgCsr, GalerkinSliceBySliceIsTheWholeProductExactly) {
         SCOPED_TRACE(::testing::Message() << dim << "D, block " << block << ", " << threads << " threads");
         const detail::Csr whole = detail::multiply(R, detail::multiply(detail::view_of(A), P, row_block, 2), block, 2);
         detail::Csr C;
-        ASSERT_TRUE(detail::galerkin(detail::view_of(A), P, R, row_block, block, C, false, threads));
+        std::vector<int> ap_blocks;
+        ASSERT_TRUE(detail::galerkin(detail::view_of(A), P, R, row_block, block, C, ap_blocks, false, threads));
         EXPECT_EQ(C.ptr, whole.ptr);
         EXPECT_EQ(C.idx, whole.idx);
         EXPECT_EQ(C.val, whole.val);
         const detail::Csr next = detail::multiply(R, detail::multiply(detail::view_of(B), P, row_block, 2), block, 2);
-        ASSERT_TRUE(detail::galerkin(detail::view_of(B), P, R, row_block, block, C, true, threads));
+        ASSERT_TRUE(detail::galerkin(detail::view_of(B), P, R, row_block, block, C, ap_blocks, true, threads));
         EXPECT_EQ(C.idx, next.idx);
         EXPECT_EQ(C.val, next.val);
         detail::Csr wrong = P;
-        EXPECT_FALSE(detail::galerkin(detail::view_of(B), P, R, row_block, block, wrong, true, threads));
+        EXPECT_FALSE(detail::galerkin(detail::view_of(B), P, R, row_block, block, wrong, ap_blocks, true, threads));
+        std::vector<int> none;
+        EXPECT_FALSE(detail::galerkin(detail::view_of(B), P, R, row_block, block, C, none, true, threads));
       }
   }
 }

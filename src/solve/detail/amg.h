@@ -65,6 +65,7 @@ class AmgHierarchy {
     Csr own;
     Csr P, R;        // prolongator to this level from the next, and its transpose
     int product_block = 1;  // block of A, P and R where all three have block rows, else 1
+    std::vector<int> ap_blocks;  // blocks per row of A P (galerkin), for the refreshes
     std::vector<double> inv_diag;  // 1 / a_ii
     std::vector<double> inv_l1;    // 1 / Σ_j |a_ij|, the smoother's diagonal
     int block = 1;

@@ -70,11 +70,11 @@ void expand_node_pattern(int n, std::vector<std::vector<int>>& blocks, Csr& C, i
 /// of A's rows at a time and added to C, so that it is never held whole (on the §5.2 shells
 /// A P holds 1.1 entries per entry of A). `row_block`: the block rows of A and P; `block`:
 /// those of R and A P for the second product. C comes out exactly as multiply(R, multiply(A,
-/// P, row_block), block) computes it. With `values_only`, C keeps the pattern of an earlier
-/// galerkin() of the same patterns and only its values are recomputed (false where C does not
-/// have R's rows and P's columns).
-bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C, bool values_only,
-              int threads);
+/// P, row_block), block) computes it. `ap_blocks`: the blocks of each row of A P, filled by a
+/// full product. With `values_only`, C and `ap_blocks` are those of an earlier galerkin() of
+/// the same patterns and only C's values are recomputed (false where they do not fit).
+bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C,
+              std::vector<int>& ap_blocks, bool values_only, int threads);
 
 double dot(const double* a, const double* b, int n, int threads);
 
