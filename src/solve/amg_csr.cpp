@@ -84,58 +84,46 @@ Csr multiply_rows(const RowsView& A, const Csr& B, int threads) {
   return C;
 }
 
-// C's values for C's pattern, which holds every entry of A B: one pass, no counting or sorting.
-void multiply_values_rows(const RowsView& A, const Csr& B, Csr& C, int threads) {
+// C += A(:, first .. first + B.rows) B (B's rows numbered from `first`) into C's pattern,
+// which holds every entry of the product, in N×N blocks of rows with block rows of size N
+// (block_rows_of; N = 1: entry by entry): one slot lookup and N³ multiply-adds a pair of
+// blocks instead of N² lookups. A's entries are taken in their order, so that the products
+// over consecutive ranges of A's columns add up to the whole one to the last bit.
+template <int N>
+void add_products(const RowsView& A, const Csr& B, int first, Csr& C, int threads) {
+  const int last = first + B.rows;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<int> slot(static_cast<std::size_t>(B.cols), -1);
-#pragma omp for schedule(dynamic, 256)
-    for (int i = 0; i < A.rows; ++i) {
-      for (int k = C.ptr[i]; k < C.ptr[i + 1]; ++k) {
-        slot[C.idx[k]] = k;
-        C.val[k] = 0.0;
-      }
-      for (int ka = A.ptr[i]; ka < A.ptr[i + 1]; ++ka) {
-        const int j = A.idx[ka];
-        const double a = A.val[ka];
-        for (int kb = B.ptr[j]; kb < B.ptr[j + 1]; ++kb) C.val[slot[B.idx[kb]]] += a * B.val[kb];
+    std::vector<int> slot(static_cast<std::size_t>(C.cols / N), -1);
+#pragma omp for schedule(dynamic, 64)
+    for (int I = 0; I < A.rows / N; ++I) {
+      const int* begin = A.idx + A.ptr[I * N];
+      const int* end = A.idx + A.ptr[I * N + 1];
+      const int k0 = static_cast<int>(std::lower_bound(begin, end, first) - begin);
+      const int k1 = static_cast<int>(std::lower_bound(begin, end, last) - begin);
+      if (k0 == k1) continue;
+      const int c0 = C.ptr[I * N], cw = C.ptr[I * N + 1] - c0;
+      double* crow[N];
+      for (int r = 0; r < N; ++r) crow[r] = C.val.data() + C.ptr[I * N + r];
+      for (int k = 0; k < cw; k += N) slot[C.idx[c0 + k] / N] = k;
+      for (int ka = k0; ka < k1; ka += N) {
+        double a[N][N];
+        for (int r = 0; r < N; ++r)
+          for (int m = 0; m < N; ++m) a[r][m] = A.val[A.ptr[I * N + r] + ka + m];
+        const int J = (begin[ka] - first) / N;
+        const int b0 = B.ptr[J * N], bw = B.ptr[J * N + 1] - b0;
+        const double* brow[N];
+        for (int m = 0; m < N; ++m) brow[m] = B.val.data() + B.ptr[J * N + m];
+        for (int kb = 0; kb < bw; kb += N) add_block_product<N>(a, brow, kb, crow, slot[B.idx[b0 + kb] / N]);
       }
     }
   }
 }
 
-// The same for A, B and C with block rows of size N (block_rows_of): C_IK = Σ_J A_IJ B_JK in
-// N×N blocks, one slot lookup and N³ multiply-adds a pair of blocks instead of N² lookups.
-template <int N>
-void multiply_values_blocks(const RowsView& A, const Csr& B, Csr& C, int threads) {
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<int> slot(static_cast<std::size_t>(B.cols / N), -1);
-#pragma omp for schedule(dynamic, 64)
-    for (int I = 0; I < A.rows / N; ++I) {
-      const int c0 = C.ptr[I * N], cw = C.ptr[I * N + 1] - c0;
-      double* crow[N];
-      for (int r = 0; r < N; ++r) {
-        crow[r] = C.val.data() + C.ptr[I * N + r];
-        std::fill_n(crow[r], cw, 0.0);
-      }
-      for (int k = 0; k < cw; k += N) slot[C.idx[c0 + k] / N] = k;
-      const int a0 = A.ptr[I * N], aw = A.ptr[I * N + 1] - a0;
-      for (int ka = 0; ka < aw; ka += N) {
-        double a[N][N];
-        for (int r = 0; r < N; ++r)
-          for (int m = 0; m < N; ++m) a[r][m] = A.val[A.ptr[I * N + r] + ka + m];
-        const int J = A.idx[a0 + ka] / N;
-        const int b0 = B.ptr[J * N], bw = B.ptr[J * N + 1] - b0;
-        const double* brow[N];
-        for (int m = 0; m < N; ++m) brow[m] = B.val.data() + B.ptr[J * N + m];
-        for (int kb = 0; kb < bw; kb += N) {
-          const int off = slot[B.idx[b0 + kb] / N];
-          add_block_product<N>(a, brow, kb, crow, off);
-        }
-      }
-    }
-  }
+void add_products_of(const RowsView& A, const Csr& B, int first, Csr& C, int block, int threads) {
+  if (block == 3) return add_products<3>(A, B, first, C, threads);
+  if (block == 2) return add_products<2>(A, B, first, C, threads);
+  add_products<1>(A, B, first, C, threads);
 }
 
 // C = A B for A and B with block rows of size N: the pattern node by node (one marker per
@@ -165,7 +153,7 @@ Csr multiply_blocks(const RowsView& A, const Csr& B, int threads) {
     }
   }
   expand_node_pattern(N, blocks, C, threads);
-  multiply_values_blocks<N>(A, B, C, threads);
+  add_products<N>(A, B, 0, C, threads);
   return C;
 }
 
@@ -178,9 +166,8 @@ Csr multiply_of(const RowsView& A, const Csr& B, int block, int threads) {
 }
 
 void multiply_values_of(const RowsView& A, const Csr& B, Csr& C, int block, int threads) {
-  if (block == 3) return multiply_values_blocks<3>(A, B, C, threads);
-  if (block == 2) return multiply_values_blocks<2>(A, B, C, threads);
-  multiply_values_rows(A, B, C, threads);
+  std::fill(C.val.begin(), C.val.end(), 0.0);
+  add_products_of(A, B, 0, C, block, threads);
 }
 
 // has_block_rows over any compressed rows (square or not).
@@ -221,6 +208,10 @@ void expand_node_pattern(int n, std::vector<std::vector<int>>& blocks, Csr& C, i
     }
     std::vector<int>().swap(row);
   }
+}
+
+void add_product(const Csr& A, const Csr& B, int first, Csr& C, int block, int threads) {
+  add_products_of(rows_of(A), B, first, C, block, threads);
 }
 
 void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads) {

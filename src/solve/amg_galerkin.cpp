@@ -107,43 +107,6 @@ Csr slice_product(const SparseView& A, const Csr& P, int first, int rows, int* c
   return S;
 }
 
-// C += R(:, first..) AP for the rows of A P from fine row `first` on (AP's row 0), in N×N
-// blocks: per pair of blocks the sums multiply_values() forms, in the same order, so that
-// the slices add up to its C exactly.
-template <int N>
-void add_slice(const Csr& R, const Csr& AP, int first, Csr& C, int threads) {
-  const int last = first + AP.rows;
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<int> slot(static_cast<std::size_t>(C.cols / N), -1);
-#pragma omp for schedule(dynamic, 64)
-    for (int I = 0; I < C.rows / N; ++I) {
-      const int* begin = R.idx.data() + R.ptr[I * N];
-      const int* end = R.idx.data() + R.ptr[I * N + 1];
-      const int k0 = static_cast<int>(std::lower_bound(begin, end, first) - begin);
-      const int k1 = static_cast<int>(std::lower_bound(begin, end, last) - begin);
-      if (k0 == k1) continue;
-      const int c0 = C.ptr[I * N], cw = C.ptr[I * N + 1] - c0;
-      double* crow[N];
-      for (int r = 0; r < N; ++r) crow[r] = C.val.data() + C.ptr[I * N + r];
-      for (int k = 0; k < cw; k += N) slot[C.idx[c0 + k] / N] = k;
-      for (int ka = k0; ka < k1; ka += N) {
-        double a[N][N];
-        for (int r = 0; r < N; ++r)
-          for (int m = 0; m < N; ++m) a[r][m] = R.val[R.ptr[I * N + r] + ka + m];
-        const int J = (begin[ka] - first) / N;
-        const int b0 = AP.ptr[J * N], bw = AP.ptr[J * N + 1] - b0;
-        const double* brow[N];
-        for (int m = 0; m < N; ++m) brow[m] = AP.val.data() + AP.ptr[J * N + m];
-        for (int kb = 0; kb < bw; kb += N) {
-          const int off = slot[AP.idx[b0 + kb] / N];
-          add_block_product<N>(a, brow, kb, crow, off);
-        }
-      }
-    }
-  }
-}
-
 }  // namespace
 
 bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, int block, Csr& C,
@@ -166,12 +129,7 @@ bool galerkin(const SparseView& A, const Csr& P, const Csr& R, int row_block, in
     const Csr AP = by_blocks == 3   ? slice_product<3>(A, P, first, rows, count, values_only, threads)
                    : by_blocks == 2 ? slice_product<2>(A, P, first, rows, count, values_only, threads)
                                     : slice_product<1>(A, P, first, rows, count, values_only, threads);
-    if (block == 3)
-      add_slice<3>(R, AP, first, C, threads);
-    else if (block == 2)
-      add_slice<2>(R, AP, first, C, threads);
-    else
-      add_slice<1>(R, AP, first, C, threads);
+    add_product(R, AP, first, C, block, threads);
   }
   return true;
 }

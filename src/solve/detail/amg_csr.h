@@ -50,6 +50,10 @@ Csr multiply(const Csr& A, const Csr& B, int block, int threads);
 void multiply_values(const SparseView& A, const Csr& B, Csr& C, int block, int threads);
 void multiply_values(const Csr& A, const Csr& B, Csr& C, int block, int threads);
 
+/// C += A(:, first .. first + B.rows) B, B's rows numbered from `first`, into C's pattern
+/// (which holds every entry of the product; A's rows sorted; `block` as multiply_values()): over
+/// consecutive ranges of A's columns these add up to multiply_values()'s C to the last bit.
+void add_product(const Csr& A, const Csr& B, int first, Csr& C, int block, int threads);
 /// c_r[off + j] += Σ_m a[r][m] b_m[j] for the N×N block of b's rows at `kb`: the block step
 /// of the products, whose order of sums multiply() and galerkin() share (the same bits).
 template <int N>
