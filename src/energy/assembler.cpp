@@ -67,7 +67,7 @@ double cell_value(const Metric<d>& metric, const BlockTargets<d>& bt, std::size_
 template <int d>
 EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, const TargetField<d>& targets,
                                     const DofMap& dofs, bool matrix)
-    : mesh_(&mesh), targets_(&targets), dofs_(&dofs), n_cells_(mesh.n_cells()) {
+    : mesh_(&mesh), topology_(&topology), targets_(&targets), dofs_(&dofs), n_cells_(mesh.n_cells()) {
   MESHMORPH_CHECK(mesh.dim == d, "EnergyAssembler: the mesh dimension differs from d");
   MESHMORPH_CHECK(dofs.dim() == d && dofs.n_nodes() == mesh.n_nodes(), "EnergyAssembler: the DofMap does not fit the mesh");
   MESHMORPH_CHECK(targets.blocks.size() == mesh.cells.size(), "EnergyAssembler: the targets do not fit the mesh");
@@ -82,7 +82,7 @@ EnergyAssembler<d>::EnergyAssembler(const Mesh& mesh, const Topology& topology, 
   detail::NodePattern pattern;
   if (matrix) {
     pattern = detail::build_node_pattern(topology, dofs);
-    detail::reduced_hessian_pattern(topology, dofs, pattern, outer_, inner_);
+    detail::reduced_hessian_columns(dofs, pattern, outer_);
   }
   blocks_.resize(mesh.cells.size());
   for (std::size_t bi = 0; bi < mesh.cells.size(); ++bi) {
@@ -131,7 +131,7 @@ void EnergyAssembler<d>::assemble(const Metric<d>& metric, const Eigen::MatrixXd
     out.hessian = Eigen::SparseMatrix<double>(n_free, n_free);
     out.hessian.resizeNonZeros(static_cast<Eigen::Index>(nnz()));
     std::copy(outer_.begin(), outer_.end(), out.hessian.outerIndexPtr());
-    std::copy(inner_.begin(), inner_.end(), out.hessian.innerIndexPtr());
+    detail::reduced_hessian_rows(*topology_, *dofs_, outer_.data(), out.hessian.innerIndexPtr());
   }
   const int* colptr = hess ? out.hessian.outerIndexPtr() : nullptr;
   double* values = hess ? out.hessian.valuePtr() : nullptr;

@@ -28,8 +28,7 @@ NodePattern build_node_pattern(const Topology& topology, const DofMap& dofs) {
   return p;
 }
 
-void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const NodePattern& pattern,
-                             std::vector<int>& outer, std::vector<int>& inner) {
+void reduced_hessian_columns(const DofMap& dofs, const NodePattern& pattern, std::vector<int>& outer) {
   const std::size_t n_nodes = dofs.n_nodes();
   std::vector<std::int64_t> colptr(dofs.n_free() + 1, 0);
   for (std::size_t b = 0; b < n_nodes; ++b)
@@ -38,13 +37,15 @@ void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const
   MESHMORPH_CHECK(colptr.back() < std::numeric_limits<int>::max(),
                   "EnergyAssembler: the Hessian has too many entries for 32-bit indices");
   outer.assign(colptr.begin(), colptr.end());
-  inner.resize(static_cast<std::size_t>(colptr.back()));
-  const auto n = static_cast<std::int64_t>(n_nodes);
+}
+
+void reduced_hessian_rows(const Topology& topology, const DofMap& dofs, const int* outer, int* inner) {
+  const auto n = static_cast<std::int64_t>(dofs.n_nodes());
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < n; ++b) {
     const auto ub = static_cast<std::size_t>(b);
     for (std::int32_t col = dofs.first(ub); col < dofs.first(ub + 1); ++col) {
-      int* rows = inner.data() + colptr[static_cast<std::size_t>(col)];
+      int* rows = inner + outer[col];
       for (auto i = topology.node_node_offset[ub]; i < topology.node_node_offset[ub + 1]; ++i) {
         const auto a = static_cast<std::size_t>(topology.node_nodes[static_cast<std::size_t>(i)]);
         for (std::int32_t r = dofs.first(a); r < dofs.first(a + 1); ++r) *rows++ = r;

@@ -112,8 +112,10 @@ Eigen::SparseMatrix<double> assemble(const Mesh& mesh, const Topology& topology,
   // All DOFs free: the energy layer's reduced pattern is then the full d×d-block pattern.
   const DofMap all = DofMap::all_free(d, mesh.n_nodes());
   const NodePattern pattern = build_node_pattern(topology, all);
-  std::vector<int> outer, inner;
-  reduced_hessian_pattern(topology, all, pattern, outer, inner);
+  std::vector<int> outer;
+  reduced_hessian_columns(all, pattern, outer);
+  std::vector<int> inner(static_cast<std::size_t>(outer.back()));
+  reduced_hessian_rows(topology, all, outer.data(), inner.data());
   const auto n_dofs = static_cast<Eigen::Index>(all.n_dofs());
   std::vector<double> values(inner.size(), 0.0);
 

@@ -97,7 +97,7 @@ class EnergyAssembler {
   const DofMap& dofs() const { return *dofs_; }
   std::size_t n_cells() const { return n_cells_; }
   /// Number of stored Hessian entries (both triangles).
-  std::int64_t nnz() const { return static_cast<std::int64_t>(inner_.size()); }
+  std::int64_t nnz() const { return outer_.empty() ? 0 : outer_.back(); }
   /// Number of patch colours of block i (parallel sweeps per assembly).
   int n_colors(std::size_t block) const { return static_cast<int>(blocks_[block].color_offset.size()) - 1; }
 
@@ -115,11 +115,15 @@ class EnergyAssembler {
   template <class Store>
   void gather(const std::vector<double>& local, int width, int threads, Store store) const;
   const Mesh* mesh_;
+  const Topology* topology_;
   const TargetField<d>* targets_;
   const DofMap* dofs_;
   std::size_t n_cells_ = 0;
   std::vector<BlockPlan> blocks_;
-  std::vector<int> outer_, inner_;  // the reduced Hessian's CSC pattern (Assembly::hessian copies it)
+  // The reduced Hessian's CSC column pointers; a new Assembly::hessian gets its row indices
+  // from the topology (detail::reduced_hessian_rows), not from a copy held here: at a million
+  // nodes a copy is 0.6 GB.
+  std::vector<int> outer_;
   std::vector<std::int64_t> node_slot_offset_, node_slots_;
 };
 

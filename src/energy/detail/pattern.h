@@ -20,10 +20,12 @@ struct NodePattern {
 
 NodePattern build_node_pattern(const Topology& topology, const DofMap& dofs);
 
-/// The reduced Hessian's CSC pattern (n_free × n_free): column pointers `outer` (n_free + 1)
-/// and row indices `inner`. Throws std::invalid_argument when it has 2³¹ entries or more.
-void reduced_hessian_pattern(const Topology& topology, const DofMap& dofs, const NodePattern& pattern,
-                             std::vector<int>& outer, std::vector<int>& inner);
+/// The column pointers of the reduced Hessian's CSC pattern (n_free × n_free): `outer`, n_free
+/// + 1 entries. Throws std::invalid_argument when the pattern has 2³¹ entries or more.
+void reduced_hessian_columns(const DofMap& dofs, const NodePattern& pattern, std::vector<int>& outer);
+/// Its row indices, written to `inner` (outer[n_free] entries) column by column from the
+/// topology: cheaper to make again than to keep, as each Hessian holds its own copy.
+void reduced_hessian_rows(const Topology& topology, const DofMap& dofs, const int* outer, int* inner);
 
 /// Greedy colouring of the cells of one block (global cell c = first_cell + local): a cell
 /// takes the smallest colour unused by the earlier cells that share a node with it. Output:
