@@ -31,7 +31,7 @@ FIT = [
     ("weights", str, "adaptive"), ("alpha_sigma", float, 10.0), ("eps_dsigma", float, 1e-3), ("eps_sigma", float, None),
     ("n_sigma", int, 10), ("max_newton", int, 200), ("growth", float, 1.2), ("det_floor", float, 1e-3),
     ("flat_edges", bool, False), ("split", bool, True), ("level_set", str, "analytic"), ("materials", str, None),
-    ("pillow", str, "auto"), _SOLVER,
+    ("pillow", str, "auto"), ("features", bool, True), _SOLVER,
 ]
 DEFORM = [
     ("method", str, "eikonal"), ("cvt", bool, True), ("density", str, "uniform"), ("cvt_tolerance", float, 1e-4),

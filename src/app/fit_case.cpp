@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/detail/fit_features.h"
 #include "app/detail/fit_pillowing.h"
 #include "app/detail/method_output.h"
 #include "app/detail/solver_option.h"
@@ -125,6 +126,7 @@ FitSettings read_fit_settings(const CaseFile& c, int threads) {
   } else {
     r.read("pillow", s.pillow, {"auto"});
   }
+  r.read("features", s.features);
   o.solver = detail::read_solver(r);
   r.finish();
   o.threads = threads;
@@ -272,11 +274,14 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
     choices["pillow"] = {{"value", s.pillowed_cells > 0}, {"cells_added", s.pillowed_cells}, {"saddle_cells_filled", filled}, {"why", why}};
   }
   if (!settings.target_given) {
-    const double distortion = s.pillowed_cells > 0 ? 0.0 : mean_shape_distortion(mesh);
-    s.fit.target = s.pillowed_cells > 0 || distortion > kInputTargetDistortion ? TargetKind::Input : TargetKind::Ideal;
+    // A trim's layer moves by up to half a cell, which its thin input shape resists.
+    const bool layers = s.pillowed_cells > 0, interface_layers = layers && c.interface;
+    const double distortion = layers ? 0.0 : mean_shape_distortion(mesh);
+    s.fit.target = interface_layers || distortion > kInputTargetDistortion ? TargetKind::Input : TargetKind::Ideal;
     choices["target"] = {{"value", target_name(s.fit.target)},
-                         {"why", s.pillowed_cells > 0 ? std::string("the pillowed layers are thin by design")
-                                                      : format_distortion(distortion)}};
+                         {"why", interface_layers ? std::string("the pillowed layers are thin by design")
+                                 : layers         ? std::string("a pillowed trim: its layer moves by up to half a cell")
+                                                  : format_distortion(distortion)}};
   }
   if (c.order && below_order(mesh, *c.order)) mesh = elevate_order(mesh, *c.order);
   Topology topology = build_topology(mesh);
@@ -297,13 +302,13 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
   std::vector<FitTerm> terms;
   std::vector<std::string> term_keys;  // the case key of each term, for messages
   if (c.interface) {
-    terms.push_back({compile(*interface), interface_nodes(mesh, topology, eta)});
+    terms.push_back({compile(*interface), facets_nodes(interface_facets(mesh, topology, eta))});
     term_keys.push_back("interface");
   }
   std::vector<std::uint8_t> fixed(static_cast<std::size_t>(d) * mesh.n_nodes(), 0);
   for (std::int32_t node : boundary_nodes(mesh, topology)) std::fill_n(fixed.begin() + d * node, d, 1);
   if (trim) {
-    FitTerm t{compile(*trim), cut_nodes(mesh, cut)};
+    FitTerm t{compile(*trim), facets_nodes(cut_facets(mesh, cut))};
     for (std::int32_t node : t.nodes) std::fill_n(fixed.begin() + d * node, d, 0);
     terms.push_back(std::move(t));
     term_keys.push_back("trim");
@@ -342,15 +347,20 @@ FitSetup prepare_fit(const CaseFile& c, Mesh mesh, const FitSettings& settings, 
                             : "the nodes on it are all fixed (boundary nodes are, unless a project or slide entry frees them)"));
   }
 
+  s.mesh = std::move(mesh);
+  s.terms = std::move(terms);
+  s.surface_terms = s.terms.size();
+  if (settings.features) {  // docs/fit.md, Sharp features
+    if (c.interface) detail::follow_features(s, 0, *c.interface, interface_facets(s.mesh, topology, eta), lso);
+    if (trim) detail::follow_features(s, c.interface ? 1 : 0, *c.trim, cut_facets(s.mesh, cut), lso);
+  }
   if (settings.fit.solver == LinearSolverKind::Auto) {
     const auto n_free = static_cast<std::size_t>(std::ranges::count(fixed, 0));
-    const LinearSolverKind kind = resolve_linear_solver(LinearSolverKind::Auto, d, n_free, mesh.max_cell_nodes());
+    const LinearSolverKind kind = resolve_linear_solver(LinearSolverKind::Auto, d, n_free, s.mesh.max_cell_nodes());
     choices["solver"] = {{"value", kind == LinearSolverKind::Cholesky ? "cholesky" : "iterative"},
                          {"why", std::to_string(n_free) + " unknowns (CG-AMG past 300k on P3 tetrahedra and P2/P3 hexahedra)"}};
   }
-  s.mesh = std::move(mesh);
   s.topology = std::move(topology);
-  s.terms = std::move(terms);
   s.fixed = std::move(fixed);
   s.split_cells = split_count;
   s.two_facet_cells = two_facet_cells;
@@ -399,13 +409,15 @@ RunOutput FitRunner::run() const {
   o.extra["fit_error_initial"] = r.fit_error0;
   o.extra["min_det_initial"] = r.min_det0;
   o.extra["min_det_final"] = r.min_det;
-  std::size_t fitted = 0;
-  for (const FitTerm& t : setup.terms) fitted += t.nodes.size();
-  o.extra["fitted_nodes"] = fitted;
+  std::vector<std::uint8_t> fitted(setup.mesh.n_nodes(), 0);  // a feature node is in two or three terms
+  for (const FitTerm& t : setup.terms)
+    for (std::int32_t node : t.nodes) fitted[static_cast<std::size_t>(node)] = 1;
+  o.extra["fitted_nodes"] = std::ranges::count(fitted, 1);
   o.extra["split_cells"] = setup.split_cells;
   o.extra["cells_with_two_interface_facets"] = setup.two_facet_cells;
   if (settings.fit.flat_edges) o.extra["flat_edge_cells"] = r.flat;
   o.extra["pillowed_cells"] = setup.pillowed_cells;
+  if (!setup.features.empty()) o.extra["features"] = detail::feature_report(setup, x);
   o.extra["choices"] = setup.choices;
   return o;
 }

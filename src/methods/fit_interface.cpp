@@ -275,29 +275,30 @@ Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<st
   return out;
 }
 
-std::vector<std::int32_t> cut_nodes(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut) {
-  std::vector<std::int32_t> nodes;
+std::vector<std::vector<std::int32_t>> cut_facets(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut) {
+  std::vector<std::vector<std::int32_t>> facets;
   std::size_t global = 0;
   for (const CellBlock& block : mesh.cells)
     for (std::size_t c = 0; c < block.n_cells(); ++c, ++global)
       for (std::size_t f = 0; f < cut[global].size(); ++f)
-        if (cut[global][f]) {
-          const std::vector<std::int32_t> on = facet_nodes(block, c, static_cast<int>(f));
-          nodes.insert(nodes.end(), on.begin(), on.end());
-        }
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
+        if (cut[global][f]) facets.push_back(facet_nodes(block, c, static_cast<int>(f)));
+  return facets;
 }
 
-std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta) {
-  std::vector<std::int32_t> nodes;
+std::vector<std::vector<std::int32_t>> interface_facets(const Mesh& mesh, const Topology& topology,
+                                                        const std::vector<std::uint8_t>& eta) {
+  std::vector<std::vector<std::int32_t>> facets;
   for (const auto& f : topology.facets) {
     if (f[1].cell < 0 || eta[static_cast<std::size_t>(f[0].cell)] == eta[static_cast<std::size_t>(f[1].cell)]) continue;
     const auto [b, c] = topology.locate(f[0].cell);
-    const std::vector<std::int32_t> on = facet_nodes(mesh.cells[b], c, f[0].local);
-    nodes.insert(nodes.end(), on.begin(), on.end());
+    facets.push_back(facet_nodes(mesh.cells[b], c, f[0].local));
   }
+  return facets;
+}
+
+std::vector<std::int32_t> facets_nodes(const std::vector<std::vector<std::int32_t>>& facets) {
+  std::vector<std::int32_t> nodes;
+  for (const std::vector<std::int32_t>& on : facets) nodes.insert(nodes.end(), on.begin(), on.end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;

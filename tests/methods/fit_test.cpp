@@ -58,7 +58,7 @@ TEST(FitInterface, CorrectedIndicatorsLeaveOneInterfaceFacetPerCell) {
     const std::vector<int> after = interface_facet_counts(topo, m.eta);
     EXPECT_LE(*std::max_element(after.begin(), after.end()), 1) << name_of(type);
     EXPECT_EQ(count_invalid_cells(m.mesh), 0u);
-    EXPECT_GT(interface_nodes(m.mesh, topo, m.eta).size(), 8u);
+    EXPECT_GT(facets_nodes(interface_facets(m.mesh, topo, m.eta)).size(), 8u);
     if (type == ElementType::Quadrilateral) {  // a staircase: eq. 10 marks two facets of its corner cells
       EXPECT_GT(*std::max_element(before.begin(), before.end()), 1);
       EXPECT_GT(m.split, 0u);
@@ -86,7 +86,7 @@ TEST(FitProblem, GradientAndHessianMatchDifferences) {
   const Mesh mesh = elevate_order(structured_mesh(ElementType::Triangle, 1, 4), 2);
   const Topology topo = build_topology(mesh);
   const LevelSetFunction sigma = circle(0.3);
-  std::vector<FitTerm> terms{{sigma, interface_nodes(mesh, topo, material_indicators(mesh, sigma))}};
+  std::vector<FitTerm> terms{{sigma, facets_nodes(interface_facets(mesh, topo, material_indicators(mesh, sigma)))}};
   const std::vector<std::uint8_t> fixed = fixed_boundary(mesh, topo);
   FitOptions o;
   FitProblem<2> P(mesh, topo, terms, fixed, o, mesh.x);
@@ -122,7 +122,7 @@ TEST(Fit, FitsACircleInterface) {
     Marked m = mark(structured_mesh(ElementType::Triangle, 1, 10), sigma);
     const Mesh mesh = order > 1 ? elevate_order(m.mesh, order) : m.mesh;
     const Topology topo = build_topology(mesh);
-    std::vector<FitTerm> terms{{sigma, interface_nodes(mesh, topo, m.eta)}};
+    std::vector<FitTerm> terms{{sigma, facets_nodes(interface_facets(mesh, topo, m.eta))}};
     FitOptions o;
     o.eps_sigma = 1e-9;
     Eigen::MatrixXd x = mesh.x;
@@ -309,7 +309,7 @@ TEST(Fit, TrimsTheMeshAndFitsTheNewBoundary) {
   EXPECT_LT(trimmed.n_cells(), mesh.n_cells());
   for (Eigen::Index i = 0; i < trimmed.x.cols(); ++i) EXPECT_LT(sigma.value(trimmed.x.col(i)), 0.2);  // nothing far outside
   const Topology t2 = build_topology(trimmed);
-  const std::vector<std::int32_t> on = cut_nodes(trimmed, cut);
+  const std::vector<std::int32_t> on = facets_nodes(cut_facets(trimmed, cut));
   EXPECT_EQ(on, boundary_nodes(trimmed, t2)) << "the whole new boundary is cut";
   std::vector<FitTerm> terms{{sigma, on}};
   std::vector<std::uint8_t> fixed(2 * trimmed.n_nodes(), 0);

@@ -11,6 +11,7 @@
 #include "meshmorph/app/report.h"
 #include "meshmorph/app/run_output.h"
 #include "meshmorph/methods/fit.h"
+#include "meshmorph/methods/fit_features.h"
 #include "meshmorph/mesh/mesh.h"
 #include "meshmorph/mesh/topology.h"
 #include "meshmorph/quality/quality_report.h"
@@ -29,6 +30,8 @@ struct FitSettings {
   std::string materials;
   /// "auto", "true" or "false" (docs/fit.md, Pillowing).
   std::string pillow = "auto";
+  /// Sharp features of a CSG surface followed (docs/fit.md, Sharp features).
+  bool features = true;
   /// Whether the case sets the target and eps_sigma; fit picks them otherwise (Choices).
   bool target_given = false, eps_sigma_given = false;
 };
@@ -42,7 +45,16 @@ FitSettings read_fit_settings(const CaseFile& c, int threads);
 struct FitSetup {
   Mesh mesh;
   Topology topology;
+  /// The case's level sets with the nodes each fits; after them, one term per piece of a
+  /// sharp CSG with the feature nodes that follow it (docs/fit.md, Sharp features).
   std::vector<FitTerm> terms;
+  std::size_t surface_terms = 0;  ///< terms[0, surface_terms): the case's level sets
+  /// The features of each fitted CSG surface, with its pieces.
+  struct Features {
+    FitFeatures found;
+    std::vector<LevelSetFunction> pieces;
+  };
+  std::vector<Features> features;
   std::vector<std::uint8_t> fixed;  ///< d per node
   std::size_t split_cells = 0, two_facet_cells = 0, pillowed_cells = 0;
   /// The settings' fit options with fit's own picks filled in (target, eps_sigma).

@@ -51,12 +51,16 @@ Mesh split_cells(const Mesh& mesh, const Topology& topology, const std::vector<s
 Mesh trim_cells(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta,
                 std::vector<std::vector<std::uint8_t>>& cut);
 
-/// The nodes of every order on the facets flagged in `cut` (as trim_cells made it; the cells
-/// may have been elevated since), sorted.
-std::vector<std::int32_t> cut_nodes(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut);
+/// The facets flagged in `cut` (as trim_cells made it; the cells may have been elevated
+/// since): the nodes of every order of each, in the facet element's ordering (trace.h).
+std::vector<std::vector<std::int32_t>> cut_facets(const Mesh& mesh, const std::vector<std::vector<std::uint8_t>>& cut);
 
-/// The nodes of every order on the facets between cells of different indicators, sorted.
-std::vector<std::int32_t> interface_nodes(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& eta);
+/// The facets between cells of different indicators, as cut_facets gives them.
+std::vector<std::vector<std::int32_t>> interface_facets(const Mesh& mesh, const Topology& topology,
+                                                        const std::vector<std::uint8_t>& eta);
+
+/// The nodes of `facets` (cut_facets, interface_facets), sorted and unique.
+std::vector<std::int32_t> facets_nodes(const std::vector<std::vector<std::int32_t>>& facets);
 
 /// The validity samples that lie on a flat edge: in 3D an edge shared by two facets of one
 /// cell whose nodes are all fitted, in 2D a corner shared by two such facets. Both facets
