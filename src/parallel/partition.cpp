@@ -2,10 +2,12 @@
 #include "meshmorph/parallel/partition.h"
 
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
 #include <petscmat.h>
+#include <scotch/scotch.h>
 
 #include "meshmorph/parallel/ranks.h"
 
@@ -89,31 +91,37 @@ LocalMesh unpack(const Packed& p) {
 }  // namespace
 
 std::vector<int> partition_cells(const Topology* topology, std::string& partitioner) {
-  const bool root = mpi_rank() == 0;
-  const int n_cells = broadcast_from_root(root ? static_cast<int>(topology->block_offset.back()) : 0);
   partitioner = "none";
+  if (mpi_rank() != 0) return {};
+  const auto n_cells = static_cast<PetscInt>(topology->block_offset.back());
   if (mpi_size() == 1) return std::vector<int>(static_cast<std::size_t>(n_cells), 0);
-  // The adjacency of the cells, all rows on rank 0; MatCreateMPIAdj takes the arrays over.
-  const int rows = root ? n_cells : 0;
+  // Rank 0 holds the whole graph and partitions it alone: PT-Scotch spread over ranks with
+  // all the vertices on one gave another partition from run to run.
   PetscInt* ia = nullptr;
   PetscInt* ja = nullptr;
   std::size_t n_edges = 0;
-  if (root)
-    for (const std::int32_t c : topology->cell_neighbors) n_edges += c >= 0 ? 1 : 0;
-  check(PetscMalloc1(rows + 1, &ia), "allocation");
+  for (const std::int32_t c : topology->cell_neighbors) n_edges += c >= 0 ? 1 : 0;
+  check(PetscMalloc1(n_cells + 1, &ia), "allocation");
   check(PetscMalloc1(n_edges + 1, &ja), "allocation");
   ia[0] = 0;
-  for (int c = 0; c < rows; ++c) {
+  for (PetscInt c = 0; c < n_cells; ++c) {
     ia[c + 1] = ia[c];
     for (auto k = topology->cell_neighbor_offset[c]; k < topology->cell_neighbor_offset[c + 1]; ++k)
       if (topology->cell_neighbors[k] >= 0) ja[ia[c + 1]++] = topology->cell_neighbors[k];
   }
-  Mat adjacency = nullptr;
-  check(MatCreateMPIAdj(PETSC_COMM_WORLD, rows, n_cells, ia, ja, nullptr, &adjacency), "cell graph set-up");
+  Mat adjacency = nullptr;  // takes ia and ja over
+  check(MatCreateMPIAdj(PETSC_COMM_SELF, n_cells, n_cells, ia, ja, nullptr, &adjacency), "cell graph set-up");
+  // The same partition for the same graph: Scotch 7's threads share out its work differently
+  // from run to run (unless the user chose their number), and it seeds its random generator
+  // with a fixed value only where told to.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
+  SCOTCH_randomSeed(1);
+  SCOTCH_randomReset();
   MatPartitioning part = nullptr;
   IS assignment = nullptr;
-  PetscErrorCode e = MatPartitioningCreate(PETSC_COMM_WORLD, &part);
+  PetscErrorCode e = MatPartitioningCreate(PETSC_COMM_SELF, &part);
   if (e == 0) e = MatPartitioningSetAdjacency(part, adjacency);
+  if (e == 0) e = MatPartitioningSetNParts(part, mpi_size());
   if (e == 0) e = MatPartitioningSetType(part, MATPARTITIONINGPTSCOTCH);
   if (e == 0) e = MatPartitioningSetFromOptions(part);
   if (e == 0) e = MatPartitioningApply(part, &assignment);
@@ -121,13 +129,11 @@ std::vector<int> partition_cells(const Topology* topology, std::string& partitio
   if (e == 0) e = MatPartitioningGetType(part, &type);
   if (e == 0) partitioner = type;
   std::vector<int> ranks;
-  if (e == 0 && root) {
-    const PetscInt* to = nullptr;
-    e = ISGetIndices(assignment, &to);
-    if (e == 0) {
-      ranks.assign(to, to + n_cells);
-      ISRestoreIndices(assignment, &to);
-    }
+  const PetscInt* to = nullptr;
+  if (e == 0) e = ISGetIndices(assignment, &to);
+  if (e == 0) {
+    ranks.assign(to, to + n_cells);
+    ISRestoreIndices(assignment, &to);
   }
   ISDestroy(&assignment);
   MatPartitioningDestroy(&part);

@@ -60,6 +60,14 @@ void count_row_entries(const LocalMesh& local, const DofMap& dofs, std::vector<P
 
 RankSystem::RankSystem(const LocalMesh& local, const DofMap& dofs) {
   ensure_petsc();
+  // GAMG's Galerkin products P^T A P on several ranks: PETSc's default adds the rows of other
+  // ranks in the order their messages arrive, which changed the bits from run to run;
+  // "allatonce" adds them in a fixed order (on one rank the product is sequential anyway).
+  int size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-matptap_via", &set);
+  if (size > 1 && !set) PetscOptionsSetValue(nullptr, "-matptap_via", "allatonce");
   const int d = local.mesh.dim;
   const int bs = whole_nodes(dofs) ? d : 1;
   const PetscInt n_owned = local.n_owned_free, n_global = local.n_global_free;

@@ -10,13 +10,13 @@
 
 namespace meshmorph {
 
-/// Collective: the rank of each cell (global order) for mpi_size() ranks, from PETSc's
-/// MatPartitioning of the cells' graph, cells joined across shared facets (`topology`'s
-/// cell_neighbors). Rank 0 passes the whole mesh's topology and gets the assignment; the
-/// other ranks pass nullptr and get an empty vector. One rank: every cell on it, without
-/// PETSc. `partitioner` gets the MatPartitioning type used on every rank: "ptscotch" unless
-/// PETSC_OPTIONS names another (-mat_partitioning_type), "none" on one rank. Throws
-/// std::runtime_error when PETSc fails.
+/// The rank of each cell (global order) for mpi_size() ranks, from PETSc's MatPartitioning of
+/// the cells' graph, cells joined across shared facets (`topology`'s cell_neighbors), on rank
+/// 0 alone: rank 0 passes the whole mesh's topology and gets the assignment, the same for the
+/// same mesh and number of ranks; the other ranks pass nullptr and get an empty vector. One
+/// rank: every cell on it, without PETSc. `partitioner` gets the MatPartitioning type used on
+/// rank 0: "ptscotch" unless PETSC_OPTIONS names another (-mat_partitioning_type), "none" on
+/// one rank and on the other ranks. Throws std::runtime_error when PETSc fails.
 std::vector<int> partition_cells(const Topology* topology, std::string& partitioner);
 
 /// Collective: rank 0 passes one LocalMesh per rank (split_mesh), the others an empty
