@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# check_mpi_optimize.sh MPIEXEC MESHMORPH EXAMPLES WORK: `mpirun -n N meshmorph optimize` on 1,
-# 2 and 3 ranks (docs/parallel.md). The 2D annulus (triangles) and the 3D sphere in a box
-# (tetrahedra), boundary fixed: the nodes on 2 and 3 ranks within 1e-10 of the bounding box's
+# check_mpi_optimize.sh MPIEXEC MESHMORPH EXAMPLES DATA WORK: `mpirun -n N meshmorph optimize`
+# on 1, 2 and 3 ranks (docs/parallel.md). The 2D annulus (triangles) and the 3D sphere in a box
+# (tetrahedra) on 2 and 3 ranks, the P2 sphere in a box and the hybrid layer (tetrahedra,
+# hexahedra, prisms, pyramids) on 2, boundary fixed: the nodes within 1e-10 of the bounding box's
 # diagonal of the 1-rank result and the report's figures within 1e-9 (compare_runs.py); two
-# runs on the same number of ranks write the same bytes. Bad input on 2 ranks: exit 2, the message once, nothing
-# written. A failure of rank 0 alone (an output it cannot write), and one of rank 2 while the
+# runs on the same number of ranks write the same bytes. Bad input on 2 ranks: exit 2, the
+# message once, nothing written. A failure of rank 0 alone (an output it cannot write), and one of rank 2 while the
 # others wait for it (MESHMORPH_FAIL_ON_RANK): every rank ends with exit 2.
-# Other commands run on rank 0 alone: `quality` prints its table once.
+# Sliding boundaries: exit 2 on ranks. Other commands run on rank 0 alone: `quality` prints its
+# table once.
 set -u
-mpiexec=$1 mm=$2 examples=$3 work=$4
+mpiexec=$1 mm=$2 examples=$3 data=$4 work=$5
 here=$(dirname "$0")
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -22,14 +24,18 @@ ranks() {  # ranks N ARGS...: meshmorph on N ranks
   timeout 300 "$mpiexec" "${flags[@]}" -n "$n" "$mm" "$@"
 }
 
-for mesh in annulus sphere_in_box; do
-  for n in 1 2 3; do
-    ranks $n optimize "$examples/meshes/$mesh.msh" --quiet -o "$work/${mesh}_$n.msh" --report "$work/${mesh}_$n.json" \
+# mesh, its folder, and the rank counts to compare with one rank
+cases=("annulus $examples/meshes 2 3" "sphere_in_box $examples/meshes 2 3" "sphere_in_box_p2 $examples/meshes 2"
+       "hybrid_layer $data 2")
+for c in "${cases[@]}"; do
+  read -r mesh folder counts <<< "$c"
+  for n in 1 $counts; do
+    ranks $n optimize "$folder/$mesh.msh" --quiet -o "$work/${mesh}_$n.msh" --report "$work/${mesh}_$n.json" \
       > "$work/${mesh}_$n.out" 2> "$work/${mesh}_$n.err" || fail "$mesh on $n ranks: exit $?: $(cat "$work/${mesh}_$n.err")"
     grep -q '"ranks": '$n "$work/${mesh}_$n.json" || fail "$mesh on $n ranks: the report has no \"ranks\": $n"
   done
   grep -q '"converged": true' "$work/${mesh}_1.json" || fail "$mesh: not converged on one rank"
-  for n in 2 3; do
+  for n in $counts; do
     /usr/bin/python3 "$here/compare_runs.py" "$work/${mesh}_1.msh" "$work/${mesh}_1.json" "$work/${mesh}_$n.msh" \
       "$work/${mesh}_$n.json" || fail "$mesh: $n ranks against 1"
   done
@@ -48,6 +54,12 @@ rc=$?
 [ "$rc" = 2 ] || fail "missing mesh: exit $rc, expected 2"
 [ "$(grep -c 'meshmorph: error:.*missing.msh' "$work/missing.err")" = 1 ] || fail "missing mesh: not said once: $(cat "$work/missing.err")"
 [ ! -e "$work/missing_out.msh" ] || fail "missing mesh: an output was written"
+
+# Sliding boundaries do not run on ranks yet: said, exit 2.
+ranks 2 optimize "$examples/meshes/annulus.msh" --boundary slide -o "$work/slide.msh" > /dev/null 2> "$work/slide.err"
+rc=$?
+[ "$rc" = 2 ] && grep -q "do not run on MPI ranks yet" "$work/slide.err" || fail "slide on 2 ranks: exit $rc: $(cat "$work/slide.err")"
+[ ! -e "$work/slide.msh" ] || fail "slide on 2 ranks: an output was written"
 
 # Rank 0 cannot write its output (its folder is a file): every rank ends with rank 0's code.
 touch "$work/not_a_folder"
