@@ -18,6 +18,8 @@ fail() { echo "FAIL: $*"; exit 1; }
 flags=()
 # Open MPI ("mpiexec (OpenRTE) 4.1.4 ... open-mpi.org")
 "$mpiexec" --version 2>&1 | grep -q -i -e "OpenRTE" -e "open-mpi" && flags=(--oversubscribe --allow-run-as-root)
+# Ranks that wait in MPI yield their core (Open MPI spins otherwise), as the tests share 2 cores.
+export OMPI_MCA_mpi_yield_when_idle=1
 ranks() {  # ranks N ARGS...: meshmorph on N ranks
   local n=$1
   shift
