@@ -18,6 +18,7 @@
 #include "meshmorph/error.h"
 #include "meshmorph/io/atomic_file.h"
 #include "meshmorph/io/input_files.h"
+#include "meshmorph/parallel/ranks.h"
 
 namespace {
 
@@ -59,14 +60,36 @@ void set_runtime_environment(char** argv) {
 }
 
 int report_error(const char* what) {
-  std::fprintf(stderr, "meshmorph: error: %s\n", what);
+  if (meshmorph::mpi_rank() == 0) std::fprintf(stderr, "meshmorph: error: %s\n", what);
   return kExitBadInput;
+}
+
+// Runs the command. On MPI ranks, optimize runs on every rank; any other command runs on rank
+// 0 alone while the others wait for its exit code.
+int run_command(const meshmorph::Command& run, bool on_every_rank) {
+  if (meshmorph::on_ranks() && !on_every_rank) {
+    int code = 0;
+    meshmorph::on_root([&] { code = run(std::cout) == meshmorph::Outcome::GoalReached ? 0 : kExitMissed; },
+                       meshmorph::report_exception);
+    std::cout.flush();
+    return meshmorph::broadcast_from_root(code);
+  }
+  std::ostream silent(nullptr);  // the summary is rank 0's
+  const meshmorph::Outcome outcome = run(meshmorph::mpi_rank() == 0 ? std::cout : silent);
+  std::cout.flush();
+  return outcome == meshmorph::Outcome::GoalReached ? 0 : kExitMissed;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   set_runtime_environment(argv);
+  try {
+    meshmorph::start_ranks();  // MPI through PETSc, where mpirun started the process
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "meshmorph: error: %s\n", e.what());
+    return 3;
+  }
   CLI::App app{"meshmorph: moves the nodes of finite-element meshes and keeps them valid"};
   app.name("meshmorph");
   meshmorph::CommonOptions common;
@@ -83,7 +106,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version
-    return app.exit(e);
+    return meshmorph::mpi_rank() == 0 ? app.exit(e) : 0;
   } catch (const CLI::ParseError& e) {
     // "A subcommand is required" also answers a misspelt one: name it and the known ones.
     std::string what = e.what();
@@ -101,7 +124,7 @@ int main(int argc, char** argv) {
         break;
       }
     report_error(what.c_str());
-    std::fprintf(stderr, "Run 'meshmorph --help' for usage.\n");
+    if (meshmorph::mpi_rank() == 0) std::fprintf(stderr, "Run 'meshmorph --help' for usage.\n");
     return kExitBadInput;
   }
 
@@ -109,17 +132,13 @@ int main(int argc, char** argv) {
     meshmorph::apply_common_options(common);
     meshmorph::remove_temporaries_on_signals();
     meshmorph::record_input_files(true);  // no output the run names itself replaces a file it read
-    const meshmorph::Outcome outcome = run(std::cout);
-    std::cout.flush();
-    return outcome == meshmorph::Outcome::GoalReached ? 0 : kExitMissed;
-  } catch (const meshmorph::InputError& e) {
-    return report_error(e.what());
-  } catch (const meshmorph::IoError& e) {
-    return report_error(e.what());
-  } catch (const std::invalid_argument& e) {
-    return report_error(e.what());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "meshmorph: internal error: %s\n", e.what());
-    return 3;
+    return run_command(run, app.got_subcommand("optimize"));
+  } catch (const meshmorph::RootFailed& e) {  // rank 0 said why
+    return e.exit_code();
+  } catch (...) {
+    const int code = meshmorph::report_exception(std::current_exception());
+    // A failure of one rank among others that may wait for it in a collective call.
+    if (meshmorph::mpi_size() > 1) meshmorph::abort_ranks(code);
+    return code;
   }
 }

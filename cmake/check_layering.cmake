@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # Fails if a file of one layer includes a header of a layer above it (DESIGN.md §1).
-set(order mesh fem io geometry quality energy solve methods app cli)
+set(order mesh fem io geometry quality energy solve methods parallel app cli)
 set(bad "")
 foreach(layer IN LISTS order)
   list(FIND order ${layer} rank)

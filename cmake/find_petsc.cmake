@@ -19,3 +19,10 @@ if(NOT TARGET PETSc::PETSc)
     INTERFACE_INCLUDE_DIRECTORIES "${PETSC_INCLUDE_DIRS}"
     INTERFACE_LINK_LIBRARIES PkgConfig::MPI_C)
 endif()
+# PT-Scotch, PETSc's partitioner (libptscotch-dev, which petsc-dev depends on): meshmorph seeds
+# its random generator (src/parallel/partition.cpp).
+find_library(PTSCOTCH_LIBRARY NAMES ptscotch REQUIRED)
+if(NOT TARGET PETSc::PTScotch)
+  add_library(PETSc::PTScotch UNKNOWN IMPORTED)
+  set_target_properties(PETSc::PTScotch PROPERTIES IMPORTED_LOCATION ${PTSCOTCH_LIBRARY} INTERFACE_LINK_LIBRARIES PkgConfig::MPI_C)
+endif()

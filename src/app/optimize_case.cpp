@@ -110,7 +110,12 @@ RunOutput OptimizeRunner::run() const {
   start.x = start_;
   Eigen::MatrixXd x = start_;
   const OptimizeResult r = optimize_mesh(start, topology_, constraints_.fixed, constraints_.slides, options, x);
+  return output(r, x);
+}
 
+RunOutput OptimizeRunner::output(const OptimizeResult& r, const Eigen::MatrixXd& x) const {
+  const ScopedThreads scoped(threads_);
+  const OptimizeOptions& options = settings_.options;
   RunOutput out;
   Report& report = out.report;
   report.method = "optimize";

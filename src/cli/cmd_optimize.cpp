@@ -12,8 +12,10 @@
 #include "cli/detail/output_files.h"
 #include "meshmorph/app/case_file.h"
 #include "meshmorph/app/optimize_case.h"
+#include "meshmorph/app/optimize_ranks.h"
 #include "meshmorph/cli/commands.h"
 #include "meshmorph/io/mesh_io.h"
+#include "meshmorph/parallel/ranks.h"
 
 namespace meshmorph {
 namespace {
@@ -24,21 +26,29 @@ struct OptimizeArgs : detail::MethodArgs {
   double rtol = -1.0;
 };
 
-Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
-  const RunTimings timings;
-  const std::optional<CaseFile> c = detail::case_or_mesh(a.input);
-  CaseFile run_case = detail::with_flags(c ? *c : bare_case(a.input), a);
+// What the run reads and where it writes: rank 0's alone on MPI ranks.
+struct Prepared {
+  std::optional<CaseFile> c;
+  std::optional<OptimizeRunner> runner;
+  detail::RunFiles files;
+};
+
+void prepare(const OptimizeArgs& a, int threads, Prepared& p) {
+  p.c = detail::case_or_mesh(a.input);
+  CaseFile run_case = detail::with_flags(p.c ? *p.c : bare_case(a.input), a);
   detail::set_option(run_case, "max_newton", a.max_newton, a.max_newton > 0);
   detail::set_option(run_case, "rtol", a.rtol, a.rtol >= 0.0);
-  const OptimizeRunner runner(run_case, read_mesh(c ? c->mesh : std::filesystem::path(a.input)), threads,
-                              OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
+  p.runner.emplace(run_case, read_mesh(p.c ? p.c->mesh : std::filesystem::path(a.input)), threads,
+                   OptimizeFlags{a.metric, a.target, a.boundary, a.solver});
   // The rest of the run, its summary included, on the threads the runner picked for this size.
-  if (runner.threads() > 0) omp_set_num_threads(runner.threads());
+  if (p.runner->threads() > 0) omp_set_num_threads(p.runner->threads());
   // Every input is read by now.
-  const detail::RunFiles files = detail::run_files(a.output, a.report, a.plot, c ? &*c : nullptr, a.input, "_optimized");
+  p.files = detail::run_files(a.output, a.report, a.plot, p.c ? &*p.c : nullptr, a.input, "_optimized");
+}
 
-  RunOutput run = runner.run();
-  detail::write_run(run, files, timings, runner.input());
+Outcome finish(const OptimizeArgs& a, const Prepared& p, RunOutput& run, const RunTimings& timings, std::ostream& out) {
+  const OptimizeRunner& runner = *p.runner;
+  detail::write_run(run, p.files, timings, runner.input());
 
   const nlohmann::ordered_json& extra = run.extra;
   const std::size_t inverted = runner.initial_inverted();
@@ -48,16 +58,38 @@ Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
       << extra["target"].get<std::string>() << ", boundary " << runner.settings().boundary << ")\n"
       << detail::mesh_line(runner.input()) << "; " << runner.constraints().slide_nodes << " sliding nodes"
       << (inverted ? "; " + std::to_string(inverted) + " inverted, untangled first" : std::string()) << "\n";
+  if (extra.contains("ranks"))
+    out << "ranks    " << extra["ranks"].get<int>() << " (cells partitioned by " << extra["partitioner"].get<std::string>() << ")\n";
   std::snprintf(line, sizeof line, "work     %lld Newton steps, %lld %s (%s)\n",
                 run.report.iterations->newton - extra["untangle_newton"].get<long long>(), run.report.iterations->linear,
-                solver == "matrix-free" ? "CG iterations" : "linear solves", solver.empty() ? "none" : solver.c_str());
+                solver == "matrix-free" || extra.contains("ranks") ? "CG iterations" : "linear solves",
+                solver.empty() ? "none" : solver.c_str());
   out << line;
   std::snprintf(line, sizeof line, "quality  F %.6g -> %.6g; mu min/mean/max %.4g / %.4g / %.4g; min det J %.3g -> %.3g; inverted %zu\n",
                 extra["energy_initial"].get<double>(), extra["energy_final"].get<double>(), extra["mu_min"].get<double>(),
                 extra["mu_mean"].get<double>(), extra["mu_max"].get<double>(), extra["min_det_initial"].get<double>(),
                 extra["min_det_final"].get<double>(), run.quality.inverted_elements);
   out << line;
-  return detail::print_result(out, run.report, files.output, 0, detail::writes_mesh(run));
+  return detail::print_result(out, run.report, p.files.output, 0, detail::writes_mesh(run));
+}
+
+Outcome run_optimize(const OptimizeArgs& a, int threads, std::ostream& out) {
+  const RunTimings timings;
+  Prepared p;
+  if (!on_ranks()) {
+    prepare(a, threads, p);
+    RunOutput run = p.runner->run();
+    return finish(a, p, run, timings, out);
+  }
+  // On MPI ranks (docs/parallel.md): rank 0 reads and writes; every rank optimizes its part.
+  on_root([&] {
+    prepare(a, threads, p);
+    check_runs_on_ranks(*p.runner);
+  }, report_exception);
+  RunOutput run = run_on_ranks(p.runner ? &*p.runner : nullptr);
+  int outcome = 0;
+  on_root([&] { outcome = static_cast<int>(finish(a, p, run, timings, out)); }, report_exception);
+  return static_cast<Outcome>(broadcast_from_root(outcome));
 }
 
 }  // namespace

@@ -3,13 +3,16 @@
 
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "meshmorph/cli/commands.h"
 #include "meshmorph/app/report.h"
+#include "meshmorph/error.h"
 #include "meshmorph/log.h"
+#include "meshmorph/parallel/ranks.h"
 
 namespace meshmorph {
 
@@ -27,7 +30,7 @@ void add_common_options(CLI::App& app, CommonOptions& options) {
 
 void apply_common_options(const CommonOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  if (options.quiet) {
+  if (options.quiet || mpi_rank() != 0) {
     set_log_sink({});
     return;
   }
@@ -45,6 +48,25 @@ void apply_common_options(const CommonOptions& options) {
         std::fprintf(stderr, "%s%.*s\n", prefix, static_cast<int>(message.size()), message.data());
       },
       max_level);
+}
+
+int report_exception(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "meshmorph: error: %s\n", e.what());
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "meshmorph: error: %s\n", e.what());
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "meshmorph: error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "meshmorph: internal error: %s\n", e.what());
+    return 3;
+  } catch (...) {
+    std::fprintf(stderr, "meshmorph: internal error\n");
+    return 3;
+  }
+  return 2;
 }
 
 }  // namespace meshmorph

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "meshmorph/energy/metric_summary.h"
 #include "meshmorph/error.h"
 #include "meshmorph/fem/validity.h"
 #include "meshmorph/quality/metric_registry.h"
@@ -77,30 +78,8 @@ double FitProblem<d>::target_measure() const {
 
 template <int d>
 std::array<double, 3> FitProblem<d>::metric_range() const {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t b = 0; b < mesh_->cells.size(); ++b) {
-    const CellBlock& block = mesh_->cells[b];
-    const BlockTargets<d>& targets = targets_.blocks[b];
-    const ShapeTable& table = *targets.table;
-    const int n = block.n_nodes_per_cell(), nq = targets.n_points();
-    const auto n_cells = static_cast<std::ptrdiff_t>(block.n_cells());
-#pragma omp parallel for num_threads(resolve_threads(options_.threads)) reduction(min : lo) reduction(max : hi) reduction(+ : sum) schedule(static)
-    for (std::ptrdiff_t c = 0; c < n_cells; ++c) {
-      Eigen::Matrix<double, d, Eigen::Dynamic> X(d, n);
-      for (int a = 0; a < n; ++a) X.col(a) = x_.col(block.nodes[static_cast<std::size_t>(c) * n + a]);
-      const QuadratureTarget<d>* t = targets.cell(static_cast<std::size_t>(c));
-      for (int q = 0; q < nq; ++q) {
-        const MatT<d> T = X.lazyProduct(table.grad(q)) * t[q].W_inv;
-        const double mu = metric_->eval(T, Want::Value).mu;
-        lo = std::min(lo, mu);
-        hi = std::max(hi, mu);
-        sum += mu;
-      }
-    }
-    count += block.n_cells() * static_cast<std::size_t>(nq);
-  }
-  return {lo, count ? sum / static_cast<double>(count) : 0.0, hi};
+  const MetricSummary s = metric_summary(*mesh_, targets_, *metric_, x_, options_.threads);
+  return {s.min, s.mean(), s.max};
 }
 
 template <int d>

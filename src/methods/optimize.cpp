@@ -16,22 +16,6 @@ namespace {
 
 using detail::format;
 
-// More points than metric_quadrature_degree where the μ barrier must see the dips of det A
-// between them, which otherwise stalled the line search on MFEM's curved meshes: in 2D 4p + 5
-// (2p + 4 Lobatto points per direction; blade P4, jagged_mid22 P2), cheap at m² points; in 3D
-// 2p + 2 when a simplex block has p ≥ 3 (escher_rs3_o3, P3 tetrahedra: degree 8); otherwise
-// 0, each block's metric_quadrature_degree.
-int default_quadrature_degree(const Mesh& mesh) {
-  int order = 1;
-  bool cubic_simplices = false;
-  for (const CellBlock& b : mesh.cells) {
-    order = std::max(order, b.order);
-    cubic_simplices = cubic_simplices || (is_simplex(b.type) && b.order >= 3);
-  }
-  if (mesh.dim == 2) return 4 * order + 5;
-  return cubic_simplices ? 2 * order + 2 : 0;
-}
-
 // TMOP optimization is fitting without a level-set term: FitProblem with no fitted nodes is
 // F = Σ_E ∫ μ with the same line-search rules.
 template <int d>
@@ -41,7 +25,7 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
   fo.metric = options.metric;
   fo.target = options.target;
   fo.quadrature = options.quadrature;
-  fo.quadrature_degree = options.quadrature_degree > 0 ? options.quadrature_degree : default_quadrature_degree(mesh);
+  fo.quadrature_degree = options.quadrature_degree > 0 ? options.quadrature_degree : optimize_quadrature_degree(mesh);
   fo.growth = options.growth;
   fo.det_floor = options.det_floor;
   const std::size_t n_free =
@@ -135,6 +119,22 @@ OptimizeResult optimize_dim(const Mesh& mesh, const Topology& topology, const st
 }
 
 }  // namespace
+
+// More points than metric_quadrature_degree where the μ barrier must see the dips of det A
+// between them, which otherwise stalled the line search on MFEM's curved meshes: in 2D 4p + 5
+// (2p + 4 Lobatto points per direction; blade P4, jagged_mid22 P2), cheap at m² points; in 3D
+// 2p + 2 when a simplex block has p ≥ 3 (escher_rs3_o3, P3 tetrahedra: degree 8); otherwise
+// 0, each block's metric_quadrature_degree.
+int optimize_quadrature_degree(const Mesh& mesh) {
+  int order = 1;
+  bool cubic_simplices = false;
+  for (const CellBlock& b : mesh.cells) {
+    order = std::max(order, b.order);
+    cubic_simplices = cubic_simplices || (is_simplex(b.type) && b.order >= 3);
+  }
+  if (mesh.dim == 2) return 4 * order + 5;
+  return cubic_simplices ? 2 * order + 2 : 0;
+}
 
 int optimize_threads(int threads, std::size_t n_dofs) { return threads > 0 ? threads : n_dofs < 30000 ? 1 : 0; }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "solve/detail/petsc_runtime.h"
+#include "meshmorph/solve/petsc_runtime.h"
 
 #include <cstdlib>
 #include <mutex>
@@ -8,7 +8,7 @@
 
 #include <petscsys.h>
 
-namespace meshmorph::detail {
+namespace meshmorph {
 namespace {
 
 void finalize_petsc() {
@@ -18,13 +18,19 @@ void finalize_petsc() {
 
 }  // namespace
 
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
 void ensure_petsc() {
   static std::once_flag once;
   static PetscErrorCode status = 0;
   std::call_once(once, [] {
     int mpi_ready = 0;
     MPI_Initialized(&mpi_ready);
-    if (!mpi_ready) {
+    if (!mpi_ready && !launched_by_mpi()) {
       // A serial process is an MPI singleton. Open MPI's defaults would fork an orted daemon
       // and probe the UCX transport: 0.25–0.4 s of MPI_Init on a 2-core machine, against
       // 0.03 s with the self transport alone and no daemon. The environment still overrides.
@@ -46,4 +52,4 @@ void ensure_petsc() {
   if (status != 0) throw std::runtime_error("meshmorph: PETSc failed to initialize (error " + std::to_string(static_cast<int>(status)) + ")");
 }
 
-}  // namespace meshmorph::detail
+}  // namespace meshmorph

@@ -10,9 +10,9 @@
 #include <petscksp.h>
 
 #include "meshmorph/error.h"
+#include "meshmorph/solve/petsc_runtime.h"
 #include "meshmorph/threads.h"
 #include "meshmorph/timings.h"
-#include "solve/detail/petsc_runtime.h"
 
 namespace meshmorph::detail {
 namespace {
@@ -77,6 +77,20 @@ struct Placed {
 };
 
 }  // namespace
+
+}  // namespace meshmorph::detail
+
+namespace meshmorph {
+
+const char* gamg_options_prefix() {
+  ensure_petsc();
+  detail::set_defaults(detail::k_gamg_prefix, detail::k_gamg_options);
+  return detail::k_gamg_prefix;
+}
+
+}  // namespace meshmorph
+
+namespace meshmorph::detail {
 
 struct PetscSolver::Impl {
   LinearSolverOptions options;
@@ -175,8 +189,7 @@ void PetscSolver::Impl::create_ksp() {
   check(KSPGetPC(ksp, &pc));
   if (gamg()) {
     check(PCSetType(pc, PCGAMG));
-    set_defaults(k_gamg_prefix, k_gamg_options);
-    check(PCSetOptionsPrefix(pc, k_gamg_prefix));
+    check(PCSetOptionsPrefix(pc, gamg_options_prefix()));
   } else {
     check(PCSetType(pc, PCHYPRE));
     set_defaults(k_hypre_prefix, k_hypre_options);

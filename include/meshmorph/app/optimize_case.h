@@ -40,14 +40,23 @@ class OptimizeRunner {
   OptimizeRunner(const CaseFile& c, Mesh mesh, int threads, const OptimizeFlags& flags = {});
 
   const Mesh& input() const { return input_; }
+  /// The case file (or bare mesh) that messages name.
+  const std::string& where() const { return where_; }
   const OptimizeSettings& settings() const { return settings_; }
   /// The OpenMP threads of the run: those asked for, or optimize_threads' choice for 0.
   int threads() const { return threads_; }
   std::size_t initial_inverted() const { return initial_inverted_; }
   const OptimizeConstraints& constraints() const { return constraints_; }
+  const Topology& topology() const { return topology_; }
+
+  /// The starting coordinates (d × n): the input's, untangled where it was tangled.
+  const Eigen::MatrixXd& start() const { return start_; }
 
   /// The optimization, on threads() threads (restored when it returns).
   RunOutput run() const;
+  /// The run's output (report, moved mesh, figures) for the result `r` of an optimization
+  /// from start() that ended at `x` (d × n): run()'s, or the distributed run's.
+  RunOutput output(const OptimizeResult& r, const Eigen::MatrixXd& x) const;
 
  private:
   std::string where_;

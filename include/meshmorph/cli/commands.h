@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <exception>
 #include <functional>
 #include <ostream>
 
@@ -17,6 +18,11 @@ enum class Outcome { GoalReached, GoalMissed };
 /// A parsed subcommand, ready to run; `out` receives its tables (main passes stdout).
 using Command = std::function<Outcome(std::ostream& out)>;
 
+/// Prints why a command failed on stderr ("meshmorph: error: …", or "meshmorph: internal
+/// error: …") and returns its exit code: 2 for bad input or usage (InputError, IoError,
+/// std::invalid_argument), 3 for anything else.
+int report_exception(std::exception_ptr error);
+
 /// Options shared by every subcommand.
 struct CommonOptions {
   int threads = 0;  ///< OpenMP threads; 0 = the OpenMP default
@@ -26,8 +32,8 @@ struct CommonOptions {
 
 /// Adds --threads, --quiet, --verbose and --version to the top-level app.
 void add_common_options(CLI::App& app, CommonOptions& options);
-/// Installs the stderr log sink ("meshmorph: ..."), silent with --quiet, detailed with
-/// --verbose, and sets the OpenMP thread count.
+/// Installs the stderr log sink ("meshmorph: ..."), silent with --quiet and on MPI ranks
+/// other than 0, detailed with --verbose, and sets the OpenMP thread count.
 void apply_common_options(const CommonOptions& options);
 
 /// `meshmorph quality MESH [--json FILE] [-o OUT.vtu]`; sets `run` when chosen.

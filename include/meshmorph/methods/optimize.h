@@ -58,6 +58,11 @@ struct OptimizeOptions {
 /// default above.
 int optimize_threads(int threads, std::size_t n_dofs);
 
+/// The quadrature degree of OptimizeOptions::quadrature_degree = 0 on `mesh` (0: each
+/// block's metric_quadrature_degree): 4p + 5 in 2D, 2p + 2 in 3D with simplices of order
+/// p ≥ 3, else 0, p the mesh's highest order.
+int optimize_quadrature_degree(const Mesh& mesh);
+
 /// One Newton step of the report's history.
 struct OptimizeIteration {
   int newton = 0;

@@ -15,7 +15,7 @@ namespace meshmorph::detail {
 /// when the pattern changes and otherwise refilled in place. Like CgAmgSolver, GAMG keeps its
 /// prolongators across factorize() calls of one pattern (only the coarse operators are
 /// recomputed) until CG needs twice the iterations per digit it needed after the last full
-/// set-up. PETSc is initialized on the first construction (petsc_runtime.h). PETSc is not
+/// set-up. PETSc is initialized on the first construction (solve/petsc_runtime.h). PETSc is not
 /// thread-safe: a process's PETSc solvers are made and used by one thread at a time.
 class PetscSolver final : public LinearSolver {
  public:
