@@ -10,10 +10,14 @@ meshed by Gmsh at that size and order, written as OUT_DIR/NAME.msh (MSH 4.1). Gm
 optimized by Gmsh (Mesh.HighOrderOptimize = 1, what `gmsh -optimize_ho` does) and written as
 OUT_DIR/NAME_gmsh.msh. One JSON line per mesh on stdout: name, gmsh_min_jacobian,
 gmsh_optimize_seconds, gmsh_cad_distance (the largest distance of a boundary node of the
-optimized mesh from its CAD surface: Gmsh moves boundary nodes on the CAD). Needs python3-gmsh.
+optimized mesh from its CAD surface: Gmsh moves boundary nodes on the CAD). The optimizer runs
+in a child process stopped after GMSH_TIMEOUT seconds (default 300); the row then has
+"gmsh_timeout": true and no optimized mesh. Needs python3-gmsh.
 """
 import json
 import math
+import multiprocessing
+import os
 import sys
 import time
 
@@ -78,6 +82,17 @@ def min_jacobian():
     return float("nan")
 
 
+def optimize(name, out, pipe):
+    """Gmsh's high-order optimizer on the current model (a child process): its seconds and CAD distance."""
+    start = time.perf_counter()
+    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
+    gmsh.model.mesh.optimize("HighOrder")
+    seconds = time.perf_counter() - start
+    row = {"gmsh_optimize_seconds": seconds, "gmsh_cad_distance": cad_distance()}
+    gmsh.write(f"{out}/{name}_gmsh.msh")
+    pipe.send(row)
+
+
 def make(name, out):
     geo, kind, size = name.split("_")
     order, hexes = KINDS[kind]
@@ -96,12 +111,19 @@ def make(name, out):
     gmsh.write(f"{out}/{name}.msh")
     row = {"name": name, "gmsh_min_jacobian": min_jacobian()}
     if row["gmsh_min_jacobian"] < 0:
+        limit = float(os.environ.get("GMSH_TIMEOUT", "300"))
+        # A forked child holds the model: the parent can stop an optimizer that runs too long.
+        reader, writer = multiprocessing.get_context("fork").Pipe(False)
+        child = multiprocessing.get_context("fork").Process(target=optimize, args=(name, out, writer))
         start = time.perf_counter()
-        gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
-        gmsh.model.mesh.optimize("HighOrder")
-        row["gmsh_optimize_seconds"] = time.perf_counter() - start
-        row["gmsh_cad_distance"] = cad_distance()
-        gmsh.write(f"{out}/{name}_gmsh.msh")
+        child.start()
+        if reader.poll(limit):
+            row.update(reader.recv())
+        else:
+            row["gmsh_optimize_seconds"] = time.perf_counter() - start
+            row["gmsh_timeout"] = True
+        child.terminate()
+        child.join()
     gmsh.finalize()
     print(json.dumps(row), flush=True)
 

@@ -35,7 +35,8 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
   if (boundary_.mode.empty()) boundary_.mode = c.boundary.empty() ? "auto" : "fixed";
   if (c.order && below_order(input_, *c.order)) input_ = elevate_order(input_, *c.order);
   orient_cells(c, input_);
-  input_inverted_ = count_invalid_cells(input_);
+  input_invalid_ = invalid_cells(input_);
+  input_inverted_ = static_cast<std::size_t>(std::count(input_invalid_.begin(), input_invalid_.end(), std::uint8_t{1}));
   resolve_untangle_reference(options_, reference, input_inverted_, where_);
   topology_ = build_topology(input_);
   motion_ = std::make_unique<BoundaryMotion>(c.boundary, c.file.string(), input_, topology_);
@@ -65,7 +66,8 @@ UntangleRunner::UntangleRunner(const CaseFile& c, Mesh mesh, int threads) : wher
   // auto: the boundary slides where inverted cells have only interior nodes free.
   Mesh placed = input_;
   placed.x = motion_->at(1.0);
-  const std::size_t bound = boundary_bound_inverted(placed, motion_->targets());
+  const bool unmoved = placed.x == input_.x;
+  const std::size_t bound = boundary_bound_inverted(placed, motion_->targets(), unmoved ? &input_invalid_ : nullptr);
   boundary_why_ = bound > 0 ? std::to_string(bound) + " inverted cells have all their corners on the boundary"
                             : "the interior untangles the mesh";
   local_ = bound > 0 && steps_ == 1 && motion_->targets().nodes_with(NodeRole::Prescribed).empty();
@@ -126,7 +128,7 @@ RunOutput UntangleRunner::run_local() {
   for (const int layers : {1, 2}) {
     out = RunOutput();
     x_ = input_.x;
-    const LocalUntangle l = untangle_locally(input_, topology_, may_slide_, boundary_.feature_angle, layers, o, x_);
+    const LocalUntangle l = untangle_locally(input_, topology_, may_slide_, boundary_.feature_angle, layers, o, x_, &input_invalid_);
     IterationCounts counts;
     count(counts, l.result);
     out.report.iterations = counts;

@@ -137,18 +137,25 @@ double min_jacobian_det(ElementType type, int order, const Eigen::MatrixXd& X, c
   return min_det_samples(type, order, X, &skip);
 }
 
-std::size_t count_invalid_cells(const Mesh& mesh) {
+std::vector<std::uint8_t> invalid_cells(const Mesh& mesh) {
   const PhaseTimer timer(Phase::Validity);
-  std::size_t bad = 0;
+  std::vector<std::uint8_t> bad(mesh.n_cells(), 0);
+  std::size_t offset = 0;
   for (const auto& b : mesh.cells) {
     const auto n = static_cast<std::int64_t>(b.n_cells());
-#pragma omp parallel for reduction(+ : bad) schedule(static)
+#pragma omp parallel for schedule(static)
     for (std::int64_t c = 0; c < n; ++c) {
       const double det = min_jacobian_det(b.type, b.order, cell_coordinates(mesh, b, static_cast<std::size_t>(c)));
-      if (!(det > 0) || !std::isfinite(det)) ++bad;
+      bad[offset + static_cast<std::size_t>(c)] = !(det > 0) || !std::isfinite(det);
     }
+    offset += b.n_cells();
   }
   return bad;
+}
+
+std::size_t count_invalid_cells(const Mesh& mesh) {
+  const std::vector<std::uint8_t> bad = invalid_cells(mesh);
+  return static_cast<std::size_t>(std::count(bad.begin(), bad.end(), std::uint8_t{1}));
 }
 
 }  // namespace meshmorph

@@ -30,29 +30,30 @@ std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topolog
   return surfaces;
 }
 
-std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc) {
-  std::size_t count = 0;
+std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc, const std::vector<std::uint8_t>* invalid) {
+  std::size_t count = 0, cell = 0;
   for (const CellBlock& block : mesh.cells) {
     const int corners = n_corners_of(block.type);
-    for (std::size_t c = 0; c < block.n_cells(); ++c) {
+    for (std::size_t c = 0; c < block.n_cells(); ++c, ++cell) {
       const std::int32_t* nodes = block.cell(c);
       const bool bound = std::all_of(nodes, nodes + corners, [&](std::int32_t node) {
         return bc.role[static_cast<std::size_t>(node)] != NodeRole::Free;
       });
-      if (bound && !cell_valid(mesh, block, c, mesh.x)) ++count;
+      if (bound && (invalid ? (*invalid)[cell] != 0 : !cell_valid(mesh, block, c, mesh.x))) ++count;
     }
   }
   return count;
 }
 
 LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
-                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x) {
+                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x,
+                               const std::vector<std::uint8_t>* invalid) {
   LocalUntangle local;
   // The patch: the inverted cells and `layers` rings of cells around them (sharing a node).
   const std::size_t n_cells = topology.block_offset.back();
-  std::vector<std::uint8_t> in(n_cells, 0);
+  std::vector<std::uint8_t> in = invalid ? *invalid : std::vector<std::uint8_t>(n_cells, 0);
   std::vector<std::int32_t> patch;
-  for (std::size_t b = 0; b < mesh.cells.size(); ++b) {
+  for (std::size_t b = 0; b < mesh.cells.size() && !invalid; ++b) {
     const auto n = static_cast<std::ptrdiff_t>(mesh.cells[b].n_cells());
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::ptrdiff_t c = 0; c < n; ++c)

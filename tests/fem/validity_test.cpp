@@ -138,6 +138,20 @@ TEST(Validity, SkippedSamplesAreLeftOut) {
   EXPECT_THROW(min_jacobian_det(ElementType::Quadrilateral, 1, X, skip), std::logic_error);
 }
 
+// invalid_cells flags exactly the cells that min_jacobian_det finds invalid, in block order.
+TEST(Validity, InvalidCellsFlagsTheInvertedCellsInOrder) {
+  auto mesh = structured_mesh(ElementType::Tetrahedron, 2, 2);
+  auto& b = mesh.cells[0];
+  const std::size_t swapped = b.n_cells() / 3;
+  std::swap(b.cell(swapped)[0], b.cell(swapped)[1]);
+  const std::vector<std::uint8_t> flags = invalid_cells(mesh);
+  ASSERT_EQ(flags.size(), mesh.n_cells());
+  for (std::size_t c = 0; c < b.n_cells(); ++c)
+    EXPECT_EQ(flags[c] != 0, !(min_jacobian_det(b.type, b.order, cell_coordinates(mesh, b, c)) > 0.0)) << "cell " << c;
+  EXPECT_EQ(flags[swapped], 1);
+  EXPECT_EQ(count_invalid_cells(mesh), static_cast<std::size_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1})));
+}
+
 TEST(Validity, NanCoordinatesAreInvalid) {
   auto mesh = structured_mesh(ElementType::Tetrahedron, 1, 1);
   mesh.x(0, 0) = std::numeric_limits<double>::quiet_NaN();

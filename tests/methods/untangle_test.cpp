@@ -499,6 +499,13 @@ TEST(Untangle, ACellFoldedAgainstTheBoundaryIsRepairedInAPatchWithTheBoundarySli
   Eigen::MatrixXd x = f.mesh.x;
   const LocalUntangle local = untangle_locally(f.mesh, f.topology, may_slide, 30.0, 1, {}, x);
   EXPECT_TRUE(local.result.converged) << local.result.message;
+  // The input's invalid cells given (as the untangle command passes them): the same repair.
+  const std::vector<std::uint8_t> invalid = invalid_cells(f.mesh);
+  EXPECT_EQ(boundary_bound_inverted(f.mesh, bc, &invalid), 1u);
+  Eigen::MatrixXd given = f.mesh.x;
+  const LocalUntangle again = untangle_locally(f.mesh, f.topology, may_slide, 30.0, 1, {}, given, &invalid);
+  EXPECT_EQ(again.cells, local.cells);
+  EXPECT_EQ(given, x);
   EXPECT_GT(local.cells, 1u);
   EXPECT_LT(local.cells, f.mesh.n_cells());
   Mesh repaired = f.mesh;

@@ -96,6 +96,7 @@ class UntangleRunner {
   std::string boundary_why_;          // why the boundary slides or not (the report's "boundary_choice")
   Mesh input_;
   std::size_t input_inverted_ = 0;
+  std::vector<std::uint8_t> input_invalid_;  ///< invalid_cells(input_): the patches start from them
   Topology topology_;
   std::unique_ptr<BoundaryMotion> motion_;  // points to input_ and topology_
   std::unique_ptr<Untangler> untangler_;

@@ -37,5 +37,8 @@ Eigen::MatrixXd fold_samples(ElementType type, int order, const Eigen::MatrixXd&
 
 /// Number of cells of `mesh` whose min_jacobian_det is ≤ 0 (or not finite).
 std::size_t count_invalid_cells(const Mesh& mesh);
+/// One flag per cell of `mesh` (blocks in order): 1 where min_jacobian_det is ≤ 0 (or not
+/// finite), so that callers who need both the count and the cells pass over the mesh once.
+std::vector<std::uint8_t> invalid_cells(const Mesh& mesh);
 
 }  // namespace meshmorph

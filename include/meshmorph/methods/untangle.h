@@ -123,7 +123,9 @@ std::vector<FitTerm> untangle_surfaces(const Mesh& mesh, const Topology& topolog
 /// prescribed or sliding in `bc`: only interior nodes of the cell (edge, face and body nodes)
 /// can move, which rarely suffices when the cell was bent against a curved boundary, so
 /// untangling should move the boundary along itself.
-std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc);
+/// `invalid`, where given, flags the inverted cells of `mesh` (invalid_cells) instead of testing them again.
+std::size_t boundary_bound_inverted(const Mesh& mesh, const BoundaryTargets& bc,
+                                    const std::vector<std::uint8_t>* invalid = nullptr);
 
 /// The result of untangle_locally and the cells of its patch.
 struct LocalUntangle {
@@ -139,7 +141,9 @@ struct LocalUntangle {
 /// the patch's boundary facets (untangle_surfaces) and its other boundary nodes fixed. Nothing
 /// outside the patch moves. x holds the patch's last iterate on return, valid or not
 /// (result.converged).
+/// `invalid`, where given, flags the inverted cells of x (invalid_cells) instead of testing them again.
 LocalUntangle untangle_locally(const Mesh& mesh, const Topology& topology, const std::vector<std::uint8_t>& may_slide,
-                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x);
+                               double feature_angle, int layers, UntangleOptions options, Eigen::MatrixXd& x,
+                               const std::vector<std::uint8_t>* invalid = nullptr);
 
 }  // namespace meshmorph
