@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdio>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -57,5 +58,13 @@ inline void log_warning(std::string_view message) { log_message(LogLevel::Warnin
 inline void log_info(std::string_view message) { log_message(LogLevel::Info, message); }
 inline void log_progress(std::string_view message) { log_message(LogLevel::Progress, message); }
 inline void log_detail(std::string_view message) { log_message(LogLevel::Detail, message); }
+
+/// printf-style formatting of progress and result messages (at most 240 characters).
+template <class... Args>
+std::string format(const char* pattern, Args... args) {
+  char buffer[240];
+  std::snprintf(buffer, sizeof buffer, pattern, args...);
+  return buffer;
+}
 
 }  // namespace meshmorph

@@ -135,7 +135,7 @@ RunOutput OptimizeRunner::output(const OptimizeResult& r, const Eigen::MatrixXd&
 
   const int d = input_.dim;
   nlohmann::ordered_json& extra = out.extra;
-  extra["metric"] = options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric;
+  extra["metric"] = options.metric.empty() ? std::string(default_shape_metric(d)) : options.metric;
   extra["target"] = target_name(options.target);
   extra["boundary"] = settings_.boundary;
   int degree = r.quadrature_degree;

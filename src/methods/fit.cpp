@@ -8,13 +8,10 @@
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/fit_problem.h"
-#include "methods/detail/format.h"
 #include "methods/detail/newton_solver.h"
 
 namespace meshmorph {
 namespace {
-
-using detail::format;
 
 template <int d>
 FitResult fit_dim(const Mesh& mesh, const Topology& topology, const std::vector<FitTerm>& terms,

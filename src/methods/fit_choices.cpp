@@ -12,7 +12,7 @@ namespace {
 template <int d>
 double mean_shape_distortion(const Mesh& mesh) {
   const TargetField<d> targets = build_targets<d>(mesh, mesh.x, TargetKind::Ideal);
-  const std::unique_ptr<Metric<d>> metric = make_metric<d>(d == 2 ? "mu2" : "mu303");
+  const std::unique_ptr<Metric<d>> metric = make_metric<d>(default_shape_metric(d));
   double sum = 0.0, weight = 0.0;
   for (std::size_t b = 0; b < mesh.cells.size(); ++b) {
     const CellBlock& block = mesh.cells[b];

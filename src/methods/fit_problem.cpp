@@ -30,7 +30,7 @@ FitProblem<d>::FitProblem(const Mesh& mesh, const Topology& topology, const std:
     coarse_ = std::make_unique<CoarseSpace<d>>(mesh, dofs_, targets_);
     if (coarse_->size() == 0) coarse_.reset();
   }
-  metric_ = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
+  metric_ = make_metric<d>(options.metric.empty() ? default_shape_metric(d) : options.metric);
   if (options.flat_edges) flat_ = flat_edges(mesh, penalty_.fitted(mesh.n_nodes()));
   min_det0_ = min_det(x);
 }

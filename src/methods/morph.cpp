@@ -14,7 +14,6 @@
 #include "meshmorph/methods/untangle.h"
 #include "meshmorph/quality/metric_registry.h"
 #include "meshmorph/solve/newton.h"
-#include "methods/detail/format.h"
 #include "methods/detail/morph_problem.h"
 #include "methods/detail/newton_solver.h"
 
@@ -26,8 +25,6 @@ struct Morpher::Impl {
 };
 
 namespace {
-
-using detail::format;
 
 template <int d>
 class MorphImpl final : public Morpher::Impl {

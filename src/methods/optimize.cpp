@@ -8,13 +8,10 @@
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
 #include "methods/detail/fit_problem.h"
-#include "methods/detail/format.h"
 #include "methods/detail/newton_solver.h"
 
 namespace meshmorph {
 namespace {
-
-using detail::format;
 
 // TMOP optimization is fitting without a level-set term: FitProblem with no fitted nodes is
 // F = Σ_E ∫ μ with the same line-search rules.

@@ -9,7 +9,6 @@
 #include "meshmorph/error.h"
 #include "meshmorph/log.h"
 #include "meshmorph/solve/newton.h"
-#include "methods/detail/format.h"
 #include "methods/detail/newton_solver.h"
 #include "methods/detail/untangle_problem.h"
 
@@ -21,8 +20,6 @@ struct Untangler::Impl {
 };
 
 namespace {
-
-using detail::format;
 
 // Decrement tolerances: for the intermediate δ of the continuation relative to F (Newton at
 // fixed δ stops once it predicts a decrease below 1% of F: on paper 001's tests, 1e-4 took

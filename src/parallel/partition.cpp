@@ -3,20 +3,16 @@
 
 #include <cstdint>
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 
 #include <petscmat.h>
 #include <scotch/scotch.h>
 
 #include "meshmorph/parallel/ranks.h"
+#include "meshmorph/solve/petsc_runtime.h"
 
 namespace meshmorph {
 namespace {
-
-void check(PetscErrorCode e, const char* what) {
-  if (e != 0) throw std::runtime_error(std::string("meshmorph: PETSc ") + what + " failed (error " + std::to_string(static_cast<int>(e)) + ")");
-}
 
 // A LocalMesh as two flat arrays, integers and coordinates, for one message each.
 struct Packed {
@@ -101,8 +97,8 @@ std::vector<int> partition_cells(const Topology* topology, std::string& partitio
   PetscInt* ja = nullptr;
   std::size_t n_edges = 0;
   for (const std::int32_t c : topology->cell_neighbors) n_edges += c >= 0 ? 1 : 0;
-  check(PetscMalloc1(n_cells + 1, &ia), "allocation");
-  check(PetscMalloc1(n_edges + 1, &ja), "allocation");
+  check_petsc(PetscMalloc1(n_cells + 1, &ia), "allocation");
+  check_petsc(PetscMalloc1(n_edges + 1, &ja), "allocation");
   ia[0] = 0;
   for (PetscInt c = 0; c < n_cells; ++c) {
     ia[c + 1] = ia[c];
@@ -110,7 +106,7 @@ std::vector<int> partition_cells(const Topology* topology, std::string& partitio
       if (topology->cell_neighbors[k] >= 0) ja[ia[c + 1]++] = topology->cell_neighbors[k];
   }
   Mat adjacency = nullptr;  // takes ia and ja over
-  check(MatCreateMPIAdj(PETSC_COMM_SELF, n_cells, n_cells, ia, ja, nullptr, &adjacency), "cell graph set-up");
+  check_petsc(MatCreateMPIAdj(PETSC_COMM_SELF, n_cells, n_cells, ia, ja, nullptr, &adjacency), "cell graph set-up");
   // The same partition for the same graph: Scotch 7's threads share out its work differently
   // from run to run (unless the user chose their number), and it seeds its random generator
   // with a fixed value only where told to.
@@ -138,7 +134,7 @@ std::vector<int> partition_cells(const Topology* topology, std::string& partitio
   ISDestroy(&assignment);
   MatPartitioningDestroy(&part);
   MatDestroy(&adjacency);
-  check(e, "partitioning");
+  check_petsc(e, "partitioning");
   return ranks;
 }
 

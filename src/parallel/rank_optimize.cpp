@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -44,13 +43,6 @@ Mesh assembly_mesh(const LocalMesh& local, std::vector<double>& weights) {
     block.entity.insert(block.entity.end(), ghosts.entity.begin(), ghosts.entity.end());
   }
   return mesh;
-}
-
-template <class... Args>
-std::string format(const char* pattern, Args... args) {
-  char line[256];
-  std::snprintf(line, sizeof line, pattern, args...);
-  return line;
 }
 
 // The figures of F on one rank's cells, summed or reduced over the ranks.
@@ -104,7 +96,7 @@ OptimizeResult optimize_dim(const LocalMesh& local, const OptimizeOptions& optio
   const TargetField<d> targets = build_targets<d>(cells, x, options.target, result.quadrature_degree, options.quadrature);
   const DofMap dofs = DofMap::from_mask(d, local.fixed);
   const EnergyAssembler<d> assembler(cells, topology, targets, dofs);
-  const std::unique_ptr<Metric<d>> metric = make_metric<d>(options.metric.empty() ? (d == 2 ? "mu2" : "mu303") : options.metric);
+  const std::unique_ptr<Metric<d>> metric = make_metric<d>(options.metric.empty() ? default_shape_metric(d) : options.metric);
   detail::RankSystem system(local, dofs);
   const RankEnergy<d> F{mesh, assembler, weights, *metric, system, optimize_threads(options.threads, dofs.n_free())};
   result.solver = "petsc-gamg";

@@ -2,16 +2,11 @@
 #include "parallel/detail/rank_system.h"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "meshmorph/solve/petsc_runtime.h"
 
 namespace meshmorph::detail {
 namespace {
-
-void check(PetscErrorCode e, const char* what) {
-  if (e != 0) throw std::runtime_error(std::string("meshmorph: PETSc ") + what + " failed (error " + std::to_string(static_cast<int>(e)) + ")");
-}
 
 // Whether every node with a free DOF has all d free, on every rank: the matrix then has
 // block size d and GAMG gets the rigid-body modes.
@@ -76,30 +71,30 @@ RankSystem::RankSystem(const LocalMesh& local, const DofMap& dofs) {
   for (std::size_t k = static_cast<std::size_t>(n_owned); k < rows_.size(); k += static_cast<std::size_t>(bs))
     ghosts.push_back(rows_[k] / bs);
   n_owned_ = n_owned;
-  check(VecCreateGhostBlock(PETSC_COMM_WORLD, bs, n_owned, n_global, static_cast<PetscInt>(ghosts.size()), ghosts.data(), &step_),
+  check_petsc(VecCreateGhostBlock(PETSC_COMM_WORLD, bs, n_owned, n_global, static_cast<PetscInt>(ghosts.size()), ghosts.data(), &step_),
         "vector set-up");
   for (Vec* v : {&gradient_[0], &gradient_[1], &rhs_}) {
-    check(VecCreateMPI(PETSC_COMM_WORLD, n_owned, n_global, v), "vector set-up");
-    check(VecSetBlockSize(*v, bs), "vector set-up");
+    check_petsc(VecCreateMPI(PETSC_COMM_WORLD, n_owned, n_global, v), "vector set-up");
+    check_petsc(VecSetBlockSize(*v, bs), "vector set-up");
   }
 
   std::vector<PetscInt> diagonal, off;
   count_row_entries(local, dofs, diagonal, off);
-  check(MatCreate(PETSC_COMM_WORLD, &H_), "matrix set-up");
-  check(MatSetSizes(H_, n_owned, n_owned, n_global, n_global), "matrix set-up");
-  check(MatSetType(H_, MATAIJ), "matrix set-up");
-  check(MatSetBlockSize(H_, bs), "matrix set-up");
-  check(MatSeqAIJSetPreallocation(H_, 0, diagonal.data()), "matrix preallocation");
-  check(MatMPIAIJSetPreallocation(H_, 0, diagonal.data(), 0, off.data()), "matrix preallocation");
-  check(MatSetOption(H_, MAT_SYMMETRIC, PETSC_TRUE), "matrix set-up");
-  check(MatSetOption(H_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "matrix set-up");
-  check(MatSetOption(H_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "matrix set-up");
+  check_petsc(MatCreate(PETSC_COMM_WORLD, &H_), "matrix set-up");
+  check_petsc(MatSetSizes(H_, n_owned, n_owned, n_global, n_global), "matrix set-up");
+  check_petsc(MatSetType(H_, MATAIJ), "matrix set-up");
+  check_petsc(MatSetBlockSize(H_, bs), "matrix set-up");
+  check_petsc(MatSeqAIJSetPreallocation(H_, 0, diagonal.data()), "matrix preallocation");
+  check_petsc(MatMPIAIJSetPreallocation(H_, 0, diagonal.data(), 0, off.data()), "matrix preallocation");
+  check_petsc(MatSetOption(H_, MAT_SYMMETRIC, PETSC_TRUE), "matrix set-up");
+  check_petsc(MatSetOption(H_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "matrix set-up");
+  check_petsc(MatSetOption(H_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "matrix set-up");
   if (bs == d) {
     Vec coordinates = nullptr;
-    check(VecCreateMPI(PETSC_COMM_WORLD, n_owned, n_global, &coordinates), "near-null space");
-    check(VecSetBlockSize(coordinates, bs), "near-null space");
+    check_petsc(VecCreateMPI(PETSC_COMM_WORLD, n_owned, n_global, &coordinates), "near-null space");
+    check_petsc(VecSetBlockSize(coordinates, bs), "near-null space");
     PetscScalar* c = nullptr;
-    check(VecGetArray(coordinates, &c), "near-null space");
+    check_petsc(VecGetArray(coordinates, &c), "near-null space");
     for (std::size_t j = 0; j < local.n_owned_nodes; ++j)
       if (dofs.first(j + 1) > dofs.first(j))
         for (int k = 0; k < d; ++k) c[dofs.first(j) + k] = local.mesh.x(k, static_cast<Eigen::Index>(j));
@@ -107,19 +102,19 @@ RankSystem::RankSystem(const LocalMesh& local, const DofMap& dofs) {
     MatNullSpace rigid = nullptr;
     const PetscErrorCode e = MatNullSpaceCreateRigidBody(coordinates, &rigid);
     VecDestroy(&coordinates);
-    check(e, "near-null space");
-    check(MatSetNearNullSpace(H_, rigid), "near-null space");
+    check_petsc(e, "near-null space");
+    check_petsc(MatSetNearNullSpace(H_, rigid), "near-null space");
     MatNullSpaceDestroy(&rigid);
   }
 
-  check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "solver set-up");
-  check(KSPSetType(ksp_, KSPCG), "solver set-up");
-  check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "solver set-up");
+  check_petsc(KSPCreate(PETSC_COMM_WORLD, &ksp_), "solver set-up");
+  check_petsc(KSPSetType(ksp_, KSPCG), "solver set-up");
+  check_petsc(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "solver set-up");
   PC pc = nullptr;
-  check(KSPGetPC(ksp_, &pc), "solver set-up");
-  check(PCSetType(pc, PCGAMG), "solver set-up");
-  check(PCSetOptionsPrefix(pc, gamg_options_prefix()), "solver set-up");
-  check(PCSetFromOptions(pc), "solver set-up");
+  check_petsc(KSPGetPC(ksp_, &pc), "solver set-up");
+  check_petsc(PCSetType(pc, PCGAMG), "solver set-up");
+  check_petsc(PCSetOptionsPrefix(pc, gamg_options_prefix()), "solver set-up");
+  check_petsc(PCSetFromOptions(pc), "solver set-up");
 }
 
 RankSystem::~RankSystem() {
@@ -133,11 +128,11 @@ RankSystem::~RankSystem() {
 double RankSystem::set_gradient(const Eigen::VectorXd& local, int slot) {
   Vec v = gradient_[slot];
   PetscScalar* a = nullptr;
-  check(VecGetArray(v, &a), "gradient");
+  check_petsc(VecGetArray(v, &a), "gradient");
   std::copy(local.data(), local.data() + n_owned_, a);
   VecRestoreArray(v, &a);
   PetscReal norm = 0.0;
-  check(VecNorm(v, NORM_2, &norm), "gradient norm");
+  check_petsc(VecNorm(v, NORM_2, &norm), "gradient norm");
   return norm;
 }
 
@@ -150,22 +145,22 @@ void RankSystem::set_hessian(const Eigen::SparseMatrix<double>& local) {
   for (PetscInt j = 0; j < n_owned_; ++j) {
     columns.clear();
     for (int k = outer[j]; k < outer[j + 1]; ++k) columns.push_back(rows_[static_cast<std::size_t>(inner[k])]);
-    check(MatSetValues(H_, 1, &rows_[static_cast<std::size_t>(j)], static_cast<PetscInt>(columns.size()), columns.data(),
+    check_petsc(MatSetValues(H_, 1, &rows_[static_cast<std::size_t>(j)], static_cast<PetscInt>(columns.size()), columns.data(),
                        values + outer[j], INSERT_VALUES),
           "matrix update");
   }
-  check(MatAssemblyBegin(H_, MAT_FINAL_ASSEMBLY), "matrix assembly");
-  check(MatAssemblyEnd(H_, MAT_FINAL_ASSEMBLY), "matrix assembly");
+  check_petsc(MatAssemblyBegin(H_, MAT_FINAL_ASSEMBLY), "matrix assembly");
+  check_petsc(MatAssemblyEnd(H_, MAT_FINAL_ASSEMBLY), "matrix assembly");
 }
 
 bool RankSystem::solve(double rtol, Eigen::VectorXd& p, double& slope, bool& indefinite, std::string& why) {
   indefinite = false;
   iterations_ = 0;
-  check(VecCopy(gradient_[0], rhs_), "solve");
-  check(VecScale(rhs_, -1.0), "solve");
-  check(VecSet(step_, 0.0), "solve");
-  check(KSPSetOperators(ksp_, H_, H_), "solve");
-  check(KSPSetTolerances(ksp_, rtol, 0.0, 1e300, 2000), "solve");
+  check_petsc(VecCopy(gradient_[0], rhs_), "solve");
+  check_petsc(VecScale(rhs_, -1.0), "solve");
+  check_petsc(VecSet(step_, 0.0), "solve");
+  check_petsc(KSPSetOperators(ksp_, H_, H_), "solve");
+  check_petsc(KSPSetTolerances(ksp_, rtol, 0.0, 1e300, 2000), "solve");
   const PetscErrorCode e = KSPSolve(ksp_, rhs_, step_);
   PetscInt its = 0;
   KSPGetIterationNumber(ksp_, &its);
@@ -177,16 +172,16 @@ bool RankSystem::solve(double rtol, Eigen::VectorXd& p, double& slope, bool& ind
     why = e != 0 ? "the preconditioner's set-up failed" : std::string("CG stopped (") + KSPConvergedReasons[reason] + ")";
     return false;
   }
-  check(VecGhostUpdateBegin(step_, INSERT_VALUES, SCATTER_FORWARD), "step exchange");
-  check(VecGhostUpdateEnd(step_, INSERT_VALUES, SCATTER_FORWARD), "step exchange");
+  check_petsc(VecGhostUpdateBegin(step_, INSERT_VALUES, SCATTER_FORWARD), "step exchange");
+  check_petsc(VecGhostUpdateEnd(step_, INSERT_VALUES, SCATTER_FORWARD), "step exchange");
   Vec form = nullptr;
-  check(VecGhostGetLocalForm(step_, &form), "step");
+  check_petsc(VecGhostGetLocalForm(step_, &form), "step");
   const PetscScalar* a = nullptr;
-  check(VecGetArrayRead(form, &a), "step");
+  check_petsc(VecGetArrayRead(form, &a), "step");
   p = Eigen::Map<const Eigen::VectorXd>(a, static_cast<Eigen::Index>(rows_.size()));
   VecRestoreArrayRead(form, &a);
   VecGhostRestoreLocalForm(step_, &form);
-  check(VecDot(gradient_[0], step_, &slope), "step");
+  check_petsc(VecDot(gradient_[0], step_, &slope), "step");
   return true;
 }
 

@@ -44,7 +44,7 @@ void require(bool ok, std::string_view metric, const std::string& key, const std
 
 std::vector<std::string> metric_names(int d) {
   MESHMORPH_CHECK(d == 2 || d == 3, "metric_names: dimension must be 2 or 3");
-  return {"distortion", "distortion2", d == 2 ? "mu2" : "mu303", "mu77", "mu80", "edge_quality"};
+  return {"distortion", "distortion2", default_shape_metric(d), "mu77", "mu80", "edge_quality"};
 }
 
 std::vector<std::string> metric_parameter_names(std::string_view name) {

@@ -18,6 +18,10 @@ void finalize_petsc() {
 
 }  // namespace
 
+void check_petsc(int error, const char* what) {
+  if (error != 0) throw std::runtime_error(std::string("meshmorph: PETSc ") + what + " failed (error " + std::to_string(error) + ")");
+}
+
 bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
     if (std::getenv(name) != nullptr) return true;

@@ -18,6 +18,10 @@ using MetricParams = std::map<std::string, double, std::less<>>;
 /// "distortion", "distortion2", "mu2" (2D) / "mu303" (3D), "mu77", "mu80", "edge_quality".
 std::vector<std::string> metric_names(int d);
 
+/// The TMOP shape metric of dimension d that optimize and fit take by default: "mu2" (2D),
+/// "mu303" (3D).
+inline const char* default_shape_metric(int d) { return d == 2 ? "mu2" : "mu303"; }
+
 /// Parameter names a metric accepts (empty for most); throws InputError for an unknown name.
 std::vector<std::string> metric_parameter_names(std::string_view name);
 

@@ -16,6 +16,10 @@ bool launched_by_mpi();
 /// Throws std::runtime_error when initialization fails.
 void ensure_petsc();
 
+/// Throws std::runtime_error ("meshmorph: PETSc <what> failed (error <code>)") when a PETSc
+/// call returned the nonzero error code `error`.
+void check_petsc(int error, const char* what);
+
 /// The options prefix of meshmorph's GAMG preconditioners, the serial backend's and the
 /// distributed one's, once its defaults (solve/petsc_solver.cpp) are in PETSc's options
 /// database wherever PETSC_OPTIONS has not set them.
